@@ -1,0 +1,150 @@
+"""The ``tribolmp`` command line.
+
+Subcommands live in their own modules, ``tribolmp/cli/<name>.py``, each with
+
+* ``HELP``: one-line summary;
+* ``configure(parser)``: add arguments (or nested subparsers) to ``parser``;
+* ``run(args) -> int``: compose library calls and return an exit code.
+
+Modules are imported only when their command is used, so ``tribolmp contact``
+never loads LAMMPS.  Errors map to exit codes: bad input (``SetupError`` and
+argument errors) -> 2, run failures (``RunError``) -> 3; each prints one line
+on stderr, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import importlib.util
+import json
+import math
+import sys
+from collections.abc import Sequence
+from typing import Any, NoReturn
+
+from ..errors import EXIT_RUN, EXIT_SETUP, RunError, SetupError, TribolmpError
+
+__all__ = ["main", "emit_json", "OneLineParser", "COMMANDS"]
+
+#: command -> (module, one-line help).  A command is offered only if its module exists.
+COMMANDS: dict[str, tuple[str, str]] = {
+    "info": ("tribolmp.cli.info", "versions of tribolmp, LAMMPS (packages), numpy, ase, MDAnalysis, MPI"),
+    "check": ("tribolmp.cli.check", "validate a scene file"),
+    "run": ("tribolmp.cli.run", "run a scene through the multiscale chain (default: the embedded scene)"),
+    "bench": ("tribolmp.cli.bench", "gather the speed-against-error tables of every model"),
+    "contact": ("tribolmp.cli.contact", "contact mechanics: MDR and half-space BEM"),
+    "lubrication": ("tribolmp.cli.lubrication", "reduced lubrication forces and the Reynolds reference"),
+    "topography": ("tribolmp.cli.topography", "stochastic surface evolution (Eq. 23)"),
+    "tribospec": ("tribolmp.cli.tribospec", "tribospectroscopy: simulate and fit F(amplitude)"),
+    "macro": ("tribolmp.cli.macro", "rigid body on contact springs: stick-slip and oscillation"),
+    "mca": ("tribolmp.cli.mca", "movable cellular automata friction on LAMMPS"),
+}
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """ArgumentParser whose errors are one line on stderr and exit code 2."""
+
+    def error(self, message: str) -> NoReturn:  # noqa: D102
+        self.exit(EXIT_SETUP, f"{self.prog}: error: {' '.join(message.split())}\n")
+
+
+def _available() -> dict[str, tuple[str, str]]:
+    return {k: v for k, v in COMMANDS.items() if importlib.util.find_spec(v[0]) is not None}
+
+
+def build_parser(command: str | None = None) -> OneLineParser:
+    """Build the top-level parser; configure only ``command``'s subparser."""
+    from .. import __version__
+
+    parser = OneLineParser(prog="tribolmp", description="Multiscale simulation of friction, lubrication and wear.")
+    parser.add_argument("--version", action="version", version=f"tribolmp {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=OneLineParser)
+    for name, (module, help_) in _available().items():
+        p = sub.add_parser(name, help=help_, description=help_)
+        if name == command:
+            importlib.import_module(module).configure(p)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``tribolmp`` console script.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit code: 0 success, 2 bad input, 3 run failure, 130 interrupted.
+    """
+    argv = list(sys.argv[1:] if argv is None else argv)
+    command = next((a for a in argv if not a.startswith("-")), None)
+    available = _available()
+    parser = build_parser(command if command in available else None)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # argparse's own exit (help, version, errors)
+        return int(exc.code or 0)
+    if args.command is None:
+        parser.print_help()
+        return EXIT_SETUP
+    module = importlib.import_module(available[args.command][0])
+    try:
+        return int(module.run(args) or 0)
+    except SetupError as exc:
+        print(f"tribolmp {args.command}: {exc}", file=sys.stderr)
+        return EXIT_SETUP
+    except (RunError, TribolmpError) as exc:
+        print(f"tribolmp {args.command}: {exc}", file=sys.stderr)
+        return EXIT_RUN
+    except KeyboardInterrupt:
+        print(f"tribolmp {args.command}: interrupted; finished results and checkpoints are kept", file=sys.stderr)
+        return 130
+
+
+def _default(o: Any) -> Any:
+    try:
+        import numpy as np
+    except ImportError:  # pragma: no cover
+        np = None
+    if np is not None:
+        if isinstance(o, np.ndarray):
+            return o.tolist()
+        if isinstance(o, (np.floating, np.integer, np.bool_)):
+            return o.item()
+    if hasattr(o, "__fspath__"):
+        return str(o)
+    if hasattr(o, "to_json_dict"):
+        return o.to_json_dict()
+    raise TypeError(f"not JSON serialisable: {type(o).__name__}")
+
+
+def _clean(o: Any) -> Any:
+    # JSON has no NaN/inf: emit null so that strict parsers accept the output.
+    if isinstance(o, float) and not math.isfinite(o):
+        return None
+    if isinstance(o, dict):
+        return {k: _clean(v) for k, v in o.items()}
+    if isinstance(o, (list, tuple)):
+        return [_clean(v) for v in o]
+    return o
+
+
+def emit_json(obj: Any, stream=None) -> None:
+    """Print ``obj`` as strict JSON (numpy types converted, NaN/inf as null)."""
+    text = json.dumps(_clean(json.loads(json.dumps(obj, default=_default, allow_nan=True))), allow_nan=False)
+    print(text, file=stream or sys.stdout)
+
+
+def float_list(text: str) -> list[float]:
+    """argparse type: comma-separated floats, e.g. ``1e5,1e6``."""
+    try:
+        values = [float(t) for t in text.split(",") if t.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected comma-separated numbers, got {text!r}") from None
+    if not values or not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f"expected comma-separated finite numbers, got {text!r}")
+    return values
