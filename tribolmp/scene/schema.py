@@ -102,7 +102,7 @@ class Geometry(Section):
     """``[geometry]``: macroscopic shape of the contact."""
 
     _name = "geometry"
-    profile: str = param("rough", choices=("sphere", "cone", "flat", "rough"), doc="Indenter profile.")
+    profile: str = param("sphere", choices=("sphere", "cone", "flat", "rough"), doc="Indenter profile.")
     radius: float = param(5e-3, unit="m", lo=0.0, lo_open=True, hi=10.0, doc="Sphere radius / punch radius.")
     half_angle_deg: float = param(80.0, unit="deg", lo=0.0, hi=90.0, lo_open=True, hi_open=True, doc="Cone half-angle from its axis.")
     apparent_length: float = param(1e-3, unit="m", lo=0.0, lo_open=True, hi=10.0, doc="Side of the nominal contact.")
