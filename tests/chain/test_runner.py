@@ -1,0 +1,153 @@
+"""Runner mechanics with instrumented stage functions: cache reuse, --force, failures, interrupts.
+
+The stage functions here are counters that write a file: they test the
+runner's bookkeeping (which is independent of the physics), not any model.
+End-to-end runs with the real models are in ``test_smoke.py``.
+"""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from tribolmp.chain import runner as runner_mod
+from tribolmp.chain import stages as stages_mod
+from tribolmp.chain.stages import StageOutput
+from tribolmp.errors import SetupError, StageError
+from tribolmp.scene import load_scene, scene_path
+
+
+@pytest.fixture
+def calls(monkeypatch):
+    """Replace every stage function by a counter that writes one hand-off file."""
+    counts: dict[str, int] = {}
+
+    def make(name):
+        def fn(ctx):
+            counts[name] = counts.get(name, 0) + 1
+            (ctx.workdir / "out.txt").write_text(f"{name} {ctx.seed} {sorted(ctx.upstream)}")
+            return StageOutput(values={"calls": counts[name]}, units={"calls": "1"}, files={"out": "out.txt"})
+
+        return fn
+
+    monkeypatch.setattr(stages_mod, "STAGE_FUNCS", {n: make(n) for n in runner_mod.STAGES})
+    return counts
+
+
+def _scene():
+    return load_scene(scene_path("rates_given"))
+
+
+def _report(out):
+    return json.loads((out / "report.json").read_text())
+
+
+def test_rerun_reuses_cache_and_force_recomputes(tmp_path, calls):
+    out = tmp_path / "run"
+    first = runner_mod.run_chain(_scene(), out, quiet=True, figures=False)
+    ran = [e.name for e in first.entries.values() if e.ran]
+    assert ran == ["topography", "contact", "macroscale", "tribospectroscopy"]
+    assert all(calls[n] == 1 for n in ran)
+    rep = _report(out)
+    assert [r["name"] for r in rep["stages"]] == list(runner_mod.STAGES)
+    assert all(set(r) == {"name", "ran", "reason", "time_s"} for r in rep["stages"])
+    assert rep["complete"] is True
+    # Downstream stages saw their upstream results.
+    assert "['topography']" in first.result("contact").file("out").read_text()
+
+    second = runner_mod.run_chain(_scene(), out, quiet=True, figures=False)
+    assert all(calls[n] == 1 for n in ran), "cached stages must not be recomputed"
+    assert all(second.entries[n].status == "cached" for n in ran)
+    assert second.result("contact").key == first.result("contact").key
+
+    runner_mod.run_chain(_scene(), out, quiet=True, figures=False, force=["contact"])
+    assert calls["contact"] == 2 and calls["topography"] == 1
+    # Same inputs -> same key, so downstream stages are still valid cache hits.
+    assert calls["macroscale"] == 1
+
+
+def test_changed_input_invalidates_only_downstream(tmp_path, calls):
+    import dataclasses
+
+    out = tmp_path / "run"
+    scene = _scene()
+    runner_mod.run_chain(scene, out, quiet=True, figures=False)
+    changed = dataclasses.replace(scene, contact=dataclasses.replace(scene.contact, springs=scene.contact.springs + 1))
+    runner_mod.run_chain(changed, out, quiet=True, figures=False)
+    assert calls["topography"] == 1 and calls["tribospectroscopy"] == 1
+    assert calls["contact"] == 2 and calls["macroscale"] == 2
+
+
+def test_failing_stage_is_reported_and_others_kept(tmp_path, calls, monkeypatch):
+    def boom(ctx):
+        raise RuntimeError("solver diverged\nat step 7")
+
+    monkeypatch.setitem(stages_mod.STAGE_FUNCS, "contact", boom)
+    out = tmp_path / "run"
+    with pytest.raises(StageError) as info:
+        runner_mod.run_chain(_scene(), out, quiet=True, figures=False)
+    msg = str(info.value)
+    assert "\n" not in msg and "contact" in msg and "solver diverged at step 7" in msg
+    rows = {r["name"]: r for r in _report(out)["stages"]}
+    assert rows["topography"]["ran"] and rows["tribospectroscopy"]["ran"]
+    assert not rows["contact"]["ran"] and rows["contact"]["reason"].startswith("failed:")
+    assert not rows["macroscale"]["ran"] and "upstream stage contact" in rows["macroscale"]["reason"]
+
+
+def test_setup_error_in_a_stage_maps_to_setup_error(tmp_path, calls, monkeypatch):
+    from tribolmp.errors import ParameterError
+
+    def bad(ctx):
+        raise ParameterError("[contact].springs", "an integer >= 3", 1)
+
+    monkeypatch.setitem(stages_mod.STAGE_FUNCS, "contact", bad)
+    with pytest.raises(SetupError, match=r"stage 'contact' failed: \[contact\].springs"):
+        runner_mod.run_chain(_scene(), tmp_path / "run", quiet=True, figures=False)
+
+
+def test_missing_model_is_reported_not_faked(tmp_path, calls, monkeypatch):
+    def unavailable(ctx):
+        stages_mod.require_model("tribolmp.models.does_not_exist", "solve")
+
+    monkeypatch.setitem(stages_mod.STAGE_FUNCS, "tribospectroscopy", unavailable)
+    run = runner_mod.run_chain(_scene(), tmp_path / "run", quiet=True, figures=False)
+    row = next(r for r in _report(tmp_path / "run")["stages"] if r["name"] == "tribospectroscopy")
+    assert row["ran"] is False and row["reason"].startswith("model not available: tribolmp.models.does_not_exist")
+    assert run.entries["tribospectroscopy"].status == "unavailable"
+
+
+def test_interrupt_keeps_finished_stages_and_resumes(tmp_path, calls, monkeypatch):
+    real_contact = stages_mod.STAGE_FUNCS["contact"]
+
+    def interrupted(ctx):
+        (ctx.workdir / "checkpoint").write_text("half done")
+        raise KeyboardInterrupt
+
+    monkeypatch.setitem(stages_mod.STAGE_FUNCS, "contact", interrupted)
+    out = tmp_path / "run"
+    with pytest.raises(KeyboardInterrupt):
+        runner_mod.run_chain(_scene(), out, quiet=True, figures=False)
+    rep = _report(out)
+    assert rep["complete"] is False
+    rows = {r["name"]: r for r in rep["stages"]}
+    assert rows["topography"]["ran"] and "interrupted" in rows["contact"]["reason"]
+    partial = list((out / "cache").glob("contact-*.partial"))
+    assert len(partial) == 1 and (partial[0] / "checkpoint").read_text() == "half done"
+
+    seen = {}
+
+    def resumed(ctx):
+        seen["checkpoint"] = (ctx.workdir / "checkpoint").read_text()
+        return real_contact(ctx)
+
+    monkeypatch.setitem(stages_mod.STAGE_FUNCS, "contact", resumed)
+    run = runner_mod.run_chain(_scene(), out, quiet=True, figures=False)
+    assert seen["checkpoint"] == "half done", "the rerun must find the interrupted stage's checkpoint"
+    assert calls["topography"] == 1 and run.entries["topography"].status == "cached"
+    assert run.entries["contact"].status == "computed" and _report(out)["complete"] is True
+
+
+def test_unknown_force_stage_is_a_setup_error(tmp_path, calls):
+    with pytest.raises(SetupError, match="--force"):
+        runner_mod.run_chain(_scene(), tmp_path / "run", quiet=True, force=["bogus"])

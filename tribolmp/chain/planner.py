@@ -1,0 +1,352 @@
+"""The planner: which stages a scene needs, at which fidelity, and why.
+
+The planner only reads the scene (its ``[outputs].requested`` list and which
+optional sections exist) and, for ``[contact].method = "auto"``, the measured
+speed-against-error table shipped in ``tribolmp/data/contact_speed_error.json``.
+It imports no model code, so planning a scene is instant and a dry scene never
+touches the lubrication package.
+
+Rules (each becomes the ``reason`` string of the report):
+
+* ``nanoscale`` runs LAMMPS only with a ``[nanoscale]`` section and only when
+  its rates are needed (requested ``friction``/``mca_snapshot``/``rates``, or a
+  downstream stage consumes them).  A scene with ``[rates]`` never starts LAMMPS.
+* ``topography`` evolves Eq. 23 only with a ``[topography]`` section; without
+  it the contact uses the surface the scene gives (``[roughness]``).
+* ``contact`` runs when stiffness is requested or consumed downstream; with
+  ``method = "auto"`` it picks MDR or BEM and the mesh from measured data.
+* ``lubrication`` runs whenever the scene has a ``[lubricant]``.
+* ``macroscale`` runs for ``stick_slip``; ``tribospectroscopy`` for ``tribospectroscopy``.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from importlib import resources
+from typing import Any
+
+from ..errors import SceneError
+from ..scene import Scene
+
+__all__ = ["STAGES", "StagePlan", "Plan", "plan_scene", "choose_contact_method", "speed_error_table"]
+
+#: Stage names in execution order (a contract: report.json's "stages" uses them).
+STAGES = ("nanoscale", "topography", "contact", "lubrication", "macroscale", "tribospectroscopy")
+
+#: Python package each stage's model lives in (imported lazily by the stage).
+MODEL_MODULES = {
+    "nanoscale": "tribolmp.lammps.mca",
+    "topography": "tribolmp.models.topography",
+    "contact": "tribolmp.models.contact",
+    "lubrication": "tribolmp.models.lubrication",
+    "macroscale": "tribolmp.models.macro",
+    "tribospectroscopy": "tribolmp.models.tribospectroscopy",
+}
+
+
+@dataclass(frozen=True)
+class StagePlan:
+    """The planner's decision for one stage.
+
+    Attributes
+    ----------
+    name : str
+        Stage name (one of :data:`STAGES`).
+    run : bool
+        Whether the stage is computed.
+    reason : str
+        Why it runs (or why it is skipped), one line.
+    needs : tuple of str
+        Upstream stages whose results it consumes (hashed into its cache key).
+    sections : tuple of str
+        Scene sections it reads (hashed into its cache key).
+    options : dict
+        Planner choices (method, mesh, surface or rates source...).
+    """
+
+    name: str
+    run: bool
+    reason: str
+    needs: tuple[str, ...] = ()
+    sections: tuple[str, ...] = ()
+    options: dict[str, Any] = field(default_factory=dict)
+
+    def to_json_dict(self) -> dict[str, Any]:
+        """Plain dict for report.json."""
+        return {
+            "name": self.name,
+            "run": self.run,
+            "reason": self.reason,
+            "needs": list(self.needs),
+            "sections": list(self.sections),
+            "options": dict(self.options),
+        }
+
+
+@dataclass(frozen=True)
+class Plan:
+    """All stage decisions for a scene, in execution order."""
+
+    scene: Scene
+    stages: tuple[StagePlan, ...]
+
+    def __getitem__(self, name: str) -> StagePlan:
+        for s in self.stages:
+            if s.name == name:
+                return s
+        raise KeyError(name)
+
+    @property
+    def running(self) -> list[str]:
+        """Names of the stages that will be computed."""
+        return [s.name for s in self.stages if s.run]
+
+    def to_json_dict(self) -> list[dict[str, Any]]:
+        """List of per-stage decisions."""
+        return [s.to_json_dict() for s in self.stages]
+
+
+# ------------------------------------------------------------ contact choice
+
+
+def speed_error_table() -> dict[str, Any] | None:
+    """The shipped measured speed-vs-error table of the contact solvers, or None if absent."""
+    ref = resources.files("tribolmp") / "data" / "contact_speed_error.json"
+    try:
+        return json.loads(ref.read_text())
+    except (OSError, ValueError):
+        return None
+
+
+def choose_contact_method(tolerance: float, table: dict[str, Any] | None) -> dict[str, Any]:
+    """Pick the cheapest measured (method, mesh) whose error is within ``tolerance``.
+
+    Parameters
+    ----------
+    tolerance : float
+        Acceptable relative error of the contact stiffness (dimensionless).
+    table : dict or None
+        ``{"rows": [{"method", "mesh", "rel_error", "time_s"}, ...], "provenance": ...}``.
+
+    Returns
+    -------
+    dict
+        ``method``, ``mesh`` (springs for MDR, grid points per side for BEM),
+        ``expected_error``, ``expected_time_s`` and a one-line ``why``.
+    """
+    rows = [r for r in (table or {}).get("rows", []) if r.get("rel_error") is not None and r.get("time_s") is not None]
+    if not rows:
+        return {
+            "method": "mdr",
+            "mesh": None,
+            "expected_error": None,
+            "expected_time_s": None,
+            "why": "no measured speed-error table shipped; MDR with [contact].springs (error not quantified)",
+        }
+    ok = [r for r in rows if r["rel_error"] <= tolerance]
+    if ok:
+        best = min(ok, key=lambda r: (r["time_s"], r["rel_error"]))
+        why = (
+            f"cheapest measured solver within tolerance {tolerance:g}: {best['method']} mesh {best['mesh']} "
+            f"(measured error {best['rel_error']:.3g}, {best['time_s']:.3g} s)"
+        )
+    else:
+        best = min(rows, key=lambda r: (r["rel_error"], r["time_s"]))
+        why = (
+            f"no measured solver reaches tolerance {tolerance:g}; most accurate is {best['method']} mesh "
+            f"{best['mesh']} (measured error {best['rel_error']:.3g})"
+        )
+    return {
+        "method": best["method"],
+        "mesh": best["mesh"],
+        "expected_error": best["rel_error"],
+        "expected_time_s": best["time_s"],
+        "why": why,
+    }
+
+
+# ------------------------------------------------------------------ planner
+
+
+def _requested(scene: Scene) -> set[str]:
+    return set(scene.outputs.requested)
+
+
+def plan_scene(scene: Scene, *, table: dict[str, Any] | None = None) -> Plan:
+    """Decide which stages run for ``scene`` and why.
+
+    Parameters
+    ----------
+    scene : Scene
+        A validated scene.
+    table : dict, optional
+        Contact speed-error table (default: the shipped one).
+
+    Returns
+    -------
+    Plan
+
+    Raises
+    ------
+    SceneError
+        A requested output needs a section the scene does not have.
+    """
+    req = _requested(scene)
+    src = scene.source
+    if "mca_snapshot" in req and scene.nanoscale is None:
+        raise SceneError("[nanoscale]", "a [nanoscale] section when outputs request 'mca_snapshot'", "nothing", src)
+    # 'topography' and 'tribospectroscopy' are in the default [outputs] list, so a scene without
+    # their section is not contradictory: the stage is skipped and the report says why.
+    # Downstream demand first, so that upstream stages know who consumes them.
+    want_macro = "stick_slip" in req
+    want_tribo = "tribospectroscopy" in req and scene.tribospectroscopy is not None
+    want_lub = scene.lubricant is not None
+    # The stiffness model of tribospectroscopy needs the contact stiffness k; the rigid body rides on it.
+    want_contact = "stiffness" in req or want_macro or (want_tribo and scene.tribospectroscopy.model == "stiffness")
+    surface_from_topo = want_contact and scene.geometry.profile == "rough" and scene.topography is not None
+    want_topo = "topography" in req or surface_from_topo
+    if want_contact and scene.geometry.profile == "rough" and scene.topography is None and scene.roughness is None:
+        raise SceneError("[roughness]", "a [roughness] or [topography] section for geometry.profile = 'rough'", "nothing", src)
+    tribo_stiff = want_tribo and scene.tribospectroscopy.model == "stiffness"
+    rates_consumers = [n for n, w in (("topography", want_topo), ("macroscale", want_macro), ("tribospectroscopy", tribo_stiff)) if w]
+    want_rates = bool(req & {"friction", "mca_snapshot", "rates"}) or bool(rates_consumers)
+
+    stages: list[StagePlan] = []
+
+    # -- nanoscale
+    if scene.rates is not None:
+        stages.append(StagePlan("nanoscale", False, "rates given in [rates]: LAMMPS not started", options={"rates_source": "scene"}))
+        rates_need: tuple[str, ...] = ()
+        rates_sections: tuple[str, ...] = ("rates",)
+    elif scene.nanoscale is not None and want_rates:
+        why = [f"outputs request {sorted(req & {'friction', 'mca_snapshot', 'rates'})}"] if req & {"friction", "mca_snapshot", "rates"} else []
+        if rates_consumers:
+            why.append(f"rates feed {', '.join(rates_consumers)}")
+        stages.append(
+            StagePlan(
+                "nanoscale",
+                True,
+                "MCA on LAMMPS: " + "; ".join(why),
+                sections=("nanoscale", "material", "counter_material"),
+                options={"rates_source": "nanoscale", "preset": scene.nanoscale.preset, "ranks": scene.nanoscale.ranks},
+            )
+        )
+        rates_need, rates_sections = ("nanoscale",), ()
+    elif scene.nanoscale is not None:
+        stages.append(StagePlan("nanoscale", False, "no requested output needs nanoscale rates", options={"rates_source": "none"}))
+        rates_need, rates_sections = (), ()
+    else:
+        stages.append(
+            StagePlan("nanoscale", False, "no [nanoscale] or [rates] section: friction coefficient from [load]", options={"rates_source": "load"})
+        )
+        rates_need, rates_sections = (), ("load",)
+
+    # -- topography
+    if scene.topography is None:
+        given = (
+            f"the height map {scene.roughness.surface_file}" if scene.roughness is not None and scene.roughness.surface_file
+            else "a random surface from [roughness]" if scene.roughness is not None else f"the [geometry] profile '{scene.geometry.profile}'"
+        )
+        stages.append(StagePlan("topography", False, f"no [topography] section: contact uses {given}"))
+    elif want_topo:
+        rsrc = "measured by nanoscale" if rates_need else "given in [rates]" if scene.rates is not None else "[topography] values (no rates in the scene)"
+        why = "outputs request 'topography'" if "topography" in req else "the evolved surface feeds contact"
+        stages.append(
+            StagePlan(
+                "topography",
+                True,
+                f"Eq. 23 with rates {rsrc}; {why}",
+                needs=rates_need,
+                sections=("topography", "kinematics") + tuple(s for s in rates_sections if s != "load"),
+                options={"rates_source": "nanoscale" if rates_need else ("scene" if scene.rates is not None else "topography")},
+            )
+        )
+    else:
+        stages.append(StagePlan("topography", False, "no requested output needs the evolved surface"))
+
+    # -- contact
+    topo_runs = stages[-1].run
+    if want_contact:
+        c = scene.contact
+        if scene.geometry.profile != "rough":
+            surface = f"axisymmetric {scene.geometry.profile}"
+            needs: tuple[str, ...] = ()
+            secs = ("geometry", "material", "counter_material", "load", "contact")
+        elif topo_runs:
+            surface, needs = "evolved surface from topography", ("topography",)
+            secs = ("geometry", "material", "counter_material", "load", "contact", "roughness")
+        else:
+            surface = "given height map" if scene.roughness.surface_file else "random surface from [roughness]"
+            needs, secs = (), ("geometry", "material", "counter_material", "load", "contact", "roughness")
+        if c.method == "auto":
+            choice = choose_contact_method(c.tolerance, speed_error_table() if table is None else table)
+            method, mesh, why = choice["method"], choice["mesh"], "auto: " + choice["why"]
+        else:
+            choice = {}
+            method, mesh, why = c.method, None, f"method '{c.method}' set in [contact]"
+        consumers = [n for n, w in (("macroscale", want_macro), ("tribospectroscopy", want_tribo and scene.tribospectroscopy.model == "stiffness")) if w]
+        purpose = "outputs request 'stiffness'" if "stiffness" in req else f"stiffness feeds {', '.join(consumers)}"
+        stages.append(
+            StagePlan(
+                "contact",
+                True,
+                f"{method.upper()} on the {surface}; {why}; {purpose}",
+                needs=needs,
+                sections=secs,
+                options={"method": method, "mesh": mesh, "surface": surface, **{f"expected_{k}": choice.get(f"expected_{k}") for k in ("error", "time_s") if choice}},
+            )
+        )
+    else:
+        stages.append(StagePlan("contact", False, "no requested output needs contact stiffness"))
+
+    # -- lubrication
+    if want_lub:
+        what = "polishing" if scene.polishing is not None else "squeeze and shear forces"
+        stages.append(
+            StagePlan(
+                "lubrication",
+                True,
+                f"scene has [lubricant]: {what}",
+                sections=("lubricant", "polishing", "geometry", "load", "kinematics", "material", "counter_material"),
+                options={"polishing": scene.polishing is not None},
+            )
+        )
+    else:
+        stages.append(StagePlan("lubrication", False, "dry scene: no [lubricant] section"))
+
+    # -- macroscale
+    if want_macro:
+        needs = tuple(n for n in ("contact", "lubrication") if any(s.name == n and s.run for s in stages)) + rates_need
+        stages.append(
+            StagePlan(
+                "macroscale",
+                True,
+                "outputs request 'stick_slip': rigid body on the contact" + (" with lubricant damping" if want_lub else ""),
+                needs=needs,
+                sections=("kinematics", "load", "material", "counter_material") + rates_sections,
+            )
+        )
+    else:
+        stages.append(StagePlan("macroscale", False, "'stick_slip' not requested"))
+
+    # -- tribospectroscopy
+    if want_tribo:
+        model = scene.tribospectroscopy.model
+        needs = (("contact",) if model == "stiffness" else ()) + (rates_need if model == "stiffness" else ())
+        stages.append(
+            StagePlan(
+                "tribospectroscopy",
+                True,
+                f"outputs request 'tribospectroscopy': F^2(a), {model} model, {scene.tribospectroscopy.convention} amplitudes",
+                needs=needs,
+                sections=("tribospectroscopy", "load", "material", "counter_material") + (rates_sections if model == "stiffness" else ()),
+                options={"model": model},
+            )
+        )
+    elif "tribospectroscopy" in req:
+        stages.append(StagePlan("tribospectroscopy", False, "'tribospectroscopy' requested but the scene has no [tribospectroscopy] section"))
+    else:
+        stages.append(StagePlan("tribospectroscopy", False, "'tribospectroscopy' not requested"))
+
+    return Plan(scene, tuple(stages))

@@ -1,0 +1,92 @@
+"""``tribolmp mca``: movable cellular automata friction on LAMMPS.
+
+``tribolmp mca run [SCENE.toml] [--dim 2|3] [--velocity V] [--pressure P]
+[--time T] [--preset smoke|default|paper] [--np N] [--out DIR] [--resume] [--json]``
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+HELP = "movable cellular automata friction on LAMMPS"
+
+#: JSON fields printed by ``mca run --json`` (a contract checked by others).
+JSON_FIELDS = ("mu", "mu_err", "layer_depth_m", "diffusion_m2_s", "transfer_rate", "atom_steps_per_s", "time_s")
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    """Add the ``run`` subcommand."""
+    sub = parser.add_subparsers(dest="mca_command", metavar="SUBCOMMAND", parser_class=type(parser))
+    sub.required = True
+    r = sub.add_parser("run", help="run the MCA friction experiment", description="Run the MCA friction experiment.")
+    r.add_argument("scene", nargs="?", help="scene TOML ([nanoscale] and [material]); default: the preset")
+    r.add_argument("--dim", type=int, choices=(2, 3), help="spatial dimension")
+    r.add_argument("--velocity", type=float, help="sliding velocity (m/s)")
+    r.add_argument("--pressure", type=float, help="normal pressure (Pa)")
+    r.add_argument("--time", type=float, help="simulated time (s)")
+    r.add_argument("--preset", choices=("smoke", "default", "paper"), help="size/time preset (default: smoke)")
+    r.add_argument("--bond-style", choices=("bpm/spring/plastic", "bpm/rotational"), help="link model")
+    r.add_argument("--np", type=int, default=1, help="MPI ranks (runs under the mpich wheel's mpiexec)")
+    r.add_argument("--seed", type=int, help="seed (default: the scene's [scene].seed)")
+    r.add_argument("--out", default="mca_run", help="output directory (default ./mca_run)")
+    r.add_argument("--resume", action="store_true", help="continue from the newest restart file in --out")
+    r.add_argument("--json", action="store_true", help="print the result as JSON")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Compose scene -> params -> run_mca; no physics here."""
+    from ..lammps.mca import params_from_scene, preset_params, run_mca
+    from ..scene import default_scene, load_scene
+
+    scene = load_scene(args.scene) if args.scene else default_scene()
+    if args.scene:
+        params = params_from_scene(scene)
+        if args.preset:
+            params = preset_params(args.preset, **{k: v for k, v in _scene_overrides(params).items()})
+    else:
+        params = preset_params(args.preset or "smoke")
+    changes = {
+        "dim": args.dim,
+        "sliding_velocity": args.velocity,
+        "pressure": args.pressure,
+        "duration": args.time,
+        "bond_style": args.bond_style,
+    }
+    changes = {k: v for k, v in changes.items() if v is not None}
+    if changes:
+        params = params.replace(**changes)
+    seed = args.seed if args.seed is not None else scene.scene.seed
+    res = run_mca(params, Path(args.out), seed=seed, resume=args.resume, np=args.np)
+    payload = {"rates_json": res.get("rates_path"), "out_dir": res["out_dir"]}
+    payload.update({k: res.get(k) for k in JSON_FIELDS})
+    payload.update(
+        {
+            "mu_raw": res.get("mu_raw"),
+            "wall_time_s": res["wall_time_s"],
+            "natoms": res["natoms"],
+            "nprocs": res["nprocs"],
+            "status": res["status"],
+            "message": res["message"],
+            "units": res["units"],
+        }
+    )
+    if args.json:
+        from . import emit_json
+
+        emit_json(payload)
+    else:
+        print(f"rates: {payload['rates_json']}")
+        for k in JSON_FIELDS:
+            print(f"{k}: {payload[k]}")
+    return 0
+
+
+def _scene_overrides(params) -> dict:
+    """Scene values that a --preset must not overwrite (everything but the size/time fields)."""
+    from dataclasses import asdict
+
+    from ..lammps.mca import PRESETS
+
+    sized = set().union(*(set(p) for p in PRESETS.values())) | {"preset"}
+    return {k: v for k, v in asdict(params).items() if k not in sized}

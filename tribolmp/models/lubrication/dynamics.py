@@ -1,0 +1,398 @@
+"""Film dynamics: a sphere (or a rough MDR profile) pressed through a lubricant film (SI).
+
+Smooth sphere under a constant load W
+--------------------------------------
+Every squeeze law here has the form W = c(h) V^n with V = -dh/dt, so the
+motion is integrated through the primitive
+
+    Phi(h) = int c(h)^(1/n) dh ,    Phi(h_k) - Phi(h_{k+1}) = W^(1/n) dt ,
+
+which is *exact* for a constant load at any step (the damper: Phi = alpha ln h,
+h(t) = h0 exp(-W t / alpha)), never produces h < 0, and, for the shear-thinning
+power law (n < 1, where the gap closes in finite time), stops at contact.
+``scheme="explicit"`` (forward Euler in h) is provided only to show the
+failure the seed's singular damper causes at large steps.
+
+Rough surface: mixed lubrication
+--------------------------------
+A 1D MDR profile (springs of stiffness E* dx at gaps g_i, the contact model's
+:func:`~tribolmp.models.contact.mdr.normal_force` when available) with one
+squeeze damper per summit (curvature radius from the profile).  The rigid
+flat at indentation d obeys
+
+    sum_j alpha_j d/dt ln(s_j(d)) ... = W - F_springs(d)
+
+and is stepped with the implicit log form
+``sum_j alpha_j [ln s_j(d_k) - ln s_j(d_{k+1})] / dt + F_springs(d_{k+1}) = W``
+where s_j = gap_j + h_c (h_c: film rupture thickness), solved by bracketing
+(monotone in d), so it is stable at any step and the film gaps stay > -h_c.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...errors import BlowUpError, ParameterError
+from ...scene.fields import param, validate_dataclass
+from ..base import MethodRegistry, Result, timed
+
+__all__ = [
+    "FilmParams",
+    "SCHEMES",
+    "approach",
+    "exact_gap",
+    "MixedParams",
+    "mixed_approach",
+    "winkler_normal_force",
+]
+
+SCHEMES = MethodRegistry("film scheme")
+
+
+@dataclass(frozen=True)
+class FilmParams:
+    """A sphere pressed onto a plane through a film under constant load (SI).
+
+    Attributes
+    ----------
+    radius : float
+        R in m.
+    viscosity : float
+        eta in Pa s (K for a power-law fluid when ``consistency`` is None).
+    load : float
+        Constant load W in N.
+    gap0 : float
+        Initial gap h0 in m.
+    model : str
+        ``"damper"`` (6 pi eta R^2 V/h), ``"cox-brenner"`` or ``"power-law"``.
+    power_law_index : float
+        n > 1/3 for ``model="power-law"``.
+    consistency : float or None
+        K in Pa s^n.
+    duration : float
+        Simulated time in s.
+    steps : int
+        Number of time steps.
+    """
+
+    radius: float = param(1e-3, unit="m", lo=0.0, lo_open=True, hi=1e3)
+    viscosity: float = param(0.1, unit="Pa s", lo=0.0, lo_open=True, hi=1e9)
+    load: float = param(1.0, unit="N", lo=0.0, hi=1e12)
+    gap0: float = param(1e-5, unit="m", lo=0.0, lo_open=True, hi=1e3)
+    model: str = param("damper", choices=("damper", "cox-brenner", "power-law"))
+    power_law_index: float = param(1.0, lo=1.0 / 3.0, lo_open=True, hi=5.0)
+    consistency: float | None = param(None, unit="Pa s^n", lo=0.0, lo_open=True, hi=1e9)
+    duration: float = param(1e-3, unit="s", lo=0.0, lo_open=True, hi=1e12)
+    steps: int = param(100, lo=1, hi=10**8)
+
+    def __post_init__(self) -> None:
+        validate_dataclass(self)
+        if self.model == "cox-brenner" and self.gap0 / self.radius > 0.1:
+            raise ParameterError("gap0", f"<= 0.1 R = {0.1 * self.radius:g} m for model 'cox-brenner'", self.gap0)
+
+    @property
+    def n(self) -> float:
+        """Flow index (1 unless the power-law model is chosen)."""
+        return self.power_law_index if self.model == "power-law" else 1.0
+
+    @property
+    def K(self) -> float:
+        """Consistency in Pa s^n."""
+        return self.viscosity if self.consistency is None else self.consistency
+
+
+def _power_law_coefficient(p: FilmParams) -> float:
+    """C with W = C V^n h^((1-3n)/2) (closed-form power-law squeeze force)."""
+    from .reference import power_law_squeeze_force
+
+    return power_law_squeeze_force(p.radius, p.K, p.n, 1.0, 1.0)  # h0 = 1 m, V = 1 m/s
+
+
+def _primitive(p: FilmParams):
+    """(Phi, Phi_inverse, collapse) with Phi(h) = int c(h)^(1/n) dh (units: N^(1/n) s)."""
+    alpha = 6.0 * math.pi * p.viscosity * p.radius**2
+    if p.model == "damper":
+        return (lambda h: alpha * np.log(h)), (lambda y: np.exp(y / alpha)), None
+    if p.model == "cox-brenner":
+        R = p.radius
+
+        def phi(h):
+            h = np.asarray(h, dtype=float)
+            return alpha * (np.log(h) + 0.2 / R * (h * np.log(R / h) + h) + 0.9713 * h / R)
+
+        def inv(y):
+            from scipy.optimize import brentq
+
+            y = float(y)
+            # solve in u = ln h; Phi is increasing in h
+            lo, hi = -700.0, math.log(10.0 * p.gap0 + R)
+            if float(phi(math.exp(lo))) >= y:
+                return math.exp(lo)
+            u = brentq(lambda u: float(phi(math.exp(u))) - y, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=400)
+            return math.exp(u)
+
+        return phi, inv, None
+    n = p.n
+    C = _power_law_coefficient(p)
+    # c(h)^(1/n) = C^(1/n) h^(-m), m = (3n-1)/(2n); Phi = C^(1/n) h^(1-m)/(1-m) (m != 1)
+    m = (3.0 * n - 1.0) / (2.0 * n)
+    c = C ** (1.0 / n)
+    if abs(1.0 - m) < 1e-12:
+        return (lambda h: c * np.log(h)), (lambda y: np.exp(y / c)), None
+    e = 1.0 - m
+
+    def phi(h):
+        return c * np.asarray(h, dtype=float) ** e / e
+
+    def inv(y):
+        base = y * e / c
+        if e > 0 and base <= 0:  # n < 1: the film has closed (finite-time collapse)
+            return 0.0
+        return base ** (1.0 / e)
+
+    return phi, inv, (e > 0)
+
+
+def exact_gap(p: FilmParams, t):
+    """Exact gap h(t) (m) under constant load for ``p.model`` (0 after a film collapse)."""
+    phi, inv, _ = _primitive(p)
+    y0 = float(phi(p.gap0))
+    W = p.load ** (1.0 / p.n)
+    return np.array([inv(y0 - W * float(tt)) for tt in np.atleast_1d(t)])
+
+
+@SCHEMES.register("log")
+def _log_scheme(p: FilmParams, t: np.ndarray) -> tuple[np.ndarray, int]:
+    phi, inv, _ = _primitive(p)
+    h = np.empty_like(t)
+    h[0] = p.gap0
+    y = float(phi(p.gap0))
+    W = p.load ** (1.0 / p.n)
+    for k in range(1, t.size):
+        y -= W * (t[k] - t[k - 1])
+        h[k] = inv(y) if h[k - 1] > 0 else 0.0
+    return h, t.size - 1
+
+
+@SCHEMES.register("explicit")
+def _explicit(p: FilmParams, t: np.ndarray) -> tuple[np.ndarray, int]:
+    # Forward Euler in h: V = (W / c(h))^(1/n).  Shown for comparison only.
+    from .reference import cox_brenner_force
+
+    h = np.empty_like(t)
+    h[0] = p.gap0
+    C = _power_law_coefficient(p) if p.model == "power-law" else None
+    for k in range(1, t.size):
+        hk = h[k - 1]
+        if not hk > 0:
+            h[k:] = hk
+            break
+        if p.model == "damper":
+            V = p.load * hk / (6.0 * math.pi * p.viscosity * p.radius**2)
+        elif p.model == "cox-brenner":
+            V = p.load / float(cox_brenner_force(p.radius, p.viscosity, hk, 1.0))
+        else:
+            V = (p.load / (C * hk ** ((1.0 - 3.0 * p.n) / 2.0))) ** (1.0 / p.n)
+        h[k] = hk - V * (t[k] - t[k - 1])
+    return h, t.size - 1
+
+
+def approach(params: FilmParams, *, scheme: str = "log", rng=None) -> Result:
+    """Integrate the approach of a sphere under constant load through the film.
+
+    Parameters
+    ----------
+    params : FilmParams
+    scheme : {"log", "explicit"}
+        ``log``: exact primitive (stable at any step, h >= 0); ``explicit``:
+        forward Euler in h (can overshoot to h < 0; comparison only).
+
+    Returns
+    -------
+    Result
+        ``t`` (s), ``h`` (m), ``h_exact`` (m), ``max_rel_error``, ``collapsed``
+        (the film closed: finite-time collapse of a shear-thinning film),
+        ``min_gap`` (m), ``status`` (-1 if the gap went negative).
+    """
+    impl = SCHEMES.get(scheme, "scheme")
+    res = Result(method=scheme)
+    t = np.linspace(0.0, params.duration, params.steps + 1)
+    with timed(res):
+        h, nit = impl(params, t)
+    h_ex = exact_gap(params, t)
+    pos = h_ex > 0
+    err = np.abs(h[pos] / h_ex[pos] - 1.0) if pos.any() else np.array([0.0])
+    res.update(
+        t=t,
+        h=h,
+        h_exact=h_ex,
+        max_rel_error=float(np.nanmax(err)) if err.size else 0.0,
+        min_gap=float(np.nanmin(h)),
+        collapsed=bool(h[-1] == 0.0),
+        nit=nit,
+        units={"t": "s", "h": "m", "h_exact": "m", "min_gap": "m"},
+    )
+    if not np.all(np.isfinite(h)) or res.min_gap < 0:
+        res.status = -1
+        res.message = f"gap went negative ({res.min_gap:.3g} m): the step is too large for scheme '{scheme}'"
+    else:
+        res.message = "film collapsed (contact)" if res.collapsed else "film intact"
+    return res
+
+
+# ------------------------------------------------------------------ mixed lubrication
+
+
+def winkler_normal_force(x, g, d, E_star) -> float:
+    """Stand-in MDR normal force (N): springs E* dx compressed by max(0, d - g)."""
+    dx = float(x[1] - x[0])
+    return float(E_star * dx * np.sum(np.clip(d - np.asarray(g), 0.0, None)))
+
+
+def _mdr_normal_force():
+    """The contact engineer's MDR ``normal_force`` when present, else the local stand-in."""
+    try:
+        from ..contact.mdr import normal_force  # type: ignore[import-not-found]
+
+        return normal_force, "contact.mdr"
+    except ImportError:
+        return winkler_normal_force, "winkler-stand-in"
+
+
+@dataclass(frozen=True)
+class MixedParams:
+    """Mixed lubrication of a rough 1D MDR profile pressed by a rigid flat (SI).
+
+    Attributes
+    ----------
+    viscosity : float
+        eta in Pa s.
+    E_star : float
+        Effective modulus E* in Pa.
+    load : float
+        Constant load W in N.
+    gap0 : float
+        Initial distance of the flat from the highest point in m.
+    film_cutoff : float
+        Film rupture thickness h_c in m (the damper uses gap + h_c).
+    duration : float
+        Simulated time in s.
+    steps : int
+        Time steps.
+    """
+
+    viscosity: float = param(0.1, unit="Pa s", lo=0.0, lo_open=True, hi=1e9)
+    E_star: float = param(1e11, unit="Pa", lo=0.0, lo_open=True, hi=1e13)
+    load: float = param(1.0, unit="N", lo=0.0, hi=1e12)
+    gap0: float = param(1e-6, unit="m", lo=0.0, lo_open=True, hi=1.0)
+    film_cutoff: float = param(1e-9, unit="m", lo=0.0, lo_open=True, hi=1e-3)
+    duration: float = param(1e-2, unit="s", lo=0.0, lo_open=True, hi=1e12)
+    steps: int = param(200, lo=1, hi=10**7)
+
+    def __post_init__(self) -> None:
+        validate_dataclass(self)
+
+
+def summits(x, g):
+    """Summits of an MDR gap profile: indices of local minima of g and radii R_j (m).
+
+    The MDR image of a paraboloid r^2/2R is x^2/R, so R_j = 2 / g''(x_j).
+    """
+    x, g = np.asarray(x, float), np.asarray(g, float)
+    dx = x[1] - x[0]
+    inner = np.arange(1, g.size - 1)
+    is_min = (g[inner] <= g[inner - 1]) & (g[inner] < g[inner + 1])
+    idx = inner[is_min]
+    curv = (g[idx - 1] - 2.0 * g[idx] + g[idx + 1]) / dx**2
+    ok = curv > 0
+    return idx[ok], 2.0 / curv[ok]
+
+
+def mixed_approach(x, g, params: MixedParams, *, normal_force=None) -> Result:
+    """Rigid flat pressed onto a rough MDR profile through a film: implicit log stepping.
+
+    Parameters
+    ----------
+    x, g : ndarray
+        Spring positions (m, uniform spacing) and MDR gap g(x) >= 0 (m, min 0).
+    params : MixedParams
+    normal_force : callable, optional
+        ``normal_force(x, g, d, E_star) -> N``; default: the contact model's MDR
+        function, or the Winkler stand-in when that module is not installed.
+
+    Returns
+    -------
+    Result
+        ``t`` (s), ``d`` (indentation of the flat, m; negative = still separated),
+        ``spring_force`` (N), ``fluid_force`` (N), ``contact_time`` (s, first
+        spring contact, NaN if none), ``d_dry`` (m, the dry equilibrium under W),
+        ``min_film`` (m), ``normal_force_source``.
+    """
+    from scipy.optimize import brentq
+
+    nf, source = (normal_force, "user") if normal_force is not None else _mdr_normal_force()
+    x, g = np.asarray(x, float), np.asarray(g, float)
+    p = params
+    idx, Rj = summits(x, g)
+    if idx.size == 0:
+        raise ParameterError("g", "a profile with at least one summit (local minimum of the gap)", "none")
+    alpha = 6.0 * math.pi * p.viscosity * Rj**2
+    gj = g[idx]
+    hc = p.film_cutoff
+
+    def log_s(d):
+        return np.log(np.clip(gj - d, 0.0, None) + hc)
+
+    t = np.linspace(0.0, p.duration, p.steps + 1)
+    d = np.empty_like(t)
+    Fs = np.zeros_like(t)
+    Ff = np.zeros_like(t)
+    d[0] = -p.gap0
+    res = Result(method="implicit-log")
+    # upper bracket: the dry equilibrium is the furthest the flat can go
+    gmax = float(g.max())
+
+    def dry(dd):
+        return nf(x, g, dd, p.E_star) - p.load
+
+    hi = 1e-12
+    while dry(hi) < 0:
+        hi *= 2.0
+        if hi > 1e3 * (gmax + p.gap0):
+            raise BlowUpError(f"load {p.load:g} N exceeds what the profile can carry")
+    d_dry = brentq(dry, -1e-300 if dry(0.0) < 0 else -p.gap0, hi, xtol=1e-18, rtol=1e-14) if p.load > 0 else 0.0
+    with timed(res):
+        for k in range(1, t.size):
+            dt = t[k] - t[k - 1]
+            ls0 = log_s(d[k - 1])
+
+            def resid(dd):
+                return float(np.sum(alpha * (ls0 - log_s(dd)))) / dt + nf(x, g, dd, p.E_star) - p.load
+
+            lo = d[k - 1]
+            if resid(lo) >= 0:  # already at/beyond equilibrium: stay
+                d[k] = lo
+            else:
+                d[k] = brentq(resid, lo, max(hi, lo + 1e-15), xtol=1e-18, rtol=1e-14)
+            Fs[k] = nf(x, g, d[k], p.E_star)
+            Ff[k] = p.load - Fs[k]
+    film = gj[None, :] - d[:, None]
+    touched = np.nonzero(d > 0.0)[0] if (g.min() == 0.0) else np.nonzero(film.min(axis=1) <= 0)[0]
+    res.update(
+        t=t,
+        d=d,
+        spring_force=Fs,
+        fluid_force=Ff,
+        d_dry=float(d_dry),
+        contact_time=float(t[touched[0]]) if touched.size else float("nan"),
+        min_film=float(film.min()),
+        summits=int(idx.size),
+        nit=p.steps,
+        normal_force_source=source,
+        units={"t": "s", "d": "m", "spring_force": "N", "fluid_force": "N", "d_dry": "m", "contact_time": "s", "min_film": "m"},
+        message=f"{idx.size} summit dampers, springs from {source}",
+    )
+    return res

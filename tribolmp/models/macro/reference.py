@@ -1,0 +1,94 @@
+"""Closed-form reference solutions for the rigid body on contact springs.
+
+* :func:`stick_slip_cycle` -- the limit cycle of a rigid block pulled through a
+  spring ``k`` at speed ``V`` with static/kinetic Coulomb friction
+  ``mu_s >= mu_k`` and rigid contact;
+* :func:`free_oscillation` -- the body after the normal load has vanished;
+* :func:`mindlin_loop` -- the Mindlin-Deresiewicz hysteresis of a Hertz
+  contact under a tangential oscillation at constant normal load
+  (Masing's rule on Mindlin's loading curve, in MDR variables).
+
+References
+----------
+Popov VL, Contact Mechanics and Friction, 2nd ed., Springer (2017), ch. 12
+(stick-slip) and ch. 8 (Cattaneo-Mindlin), doi:10.1007/978-3-662-53081-8.
+Mindlin RD, Deresiewicz H. J Appl Mech 20 (1953) 327.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["stick_slip_cycle", "free_oscillation", "mindlin_loading", "mindlin_loop", "mindlin_dissipation"]
+
+
+def stick_slip_cycle(mass: float, stiffness: float, velocity: float, normal_force: float,
+                     mu_s: float, mu_k: float) -> dict:
+    """Limit cycle of Coulomb stick-slip with a rigid contact.
+
+    During slip ``xi = x - V t + mu_k N / k`` oscillates harmonically at
+    ``omega = sqrt(k/m)``; the slip starts at ``F = mu_s N`` with the body at
+    rest and ends when it is at rest again, which by energy conservation is at
+    ``F = (2 mu_k - mu_s) N``, independent of ``V``.
+
+    Returns
+    -------
+    dict
+        ``force_max`` and ``force_min`` (N, spring force at slip start/end),
+        ``slip_time``, ``stick_time``, ``period`` (s), ``slip_distance`` (m).
+    """
+    w = math.sqrt(stiffness / mass)
+    A = (mu_s - mu_k) * normal_force / stiffness
+    if A <= 0:
+        return dict(force_max=mu_k * normal_force, force_min=mu_k * normal_force, slip_time=math.inf,
+                    stick_time=0.0, period=math.inf, slip_distance=math.inf)
+    slip = (math.pi + 2.0 * math.atan(velocity / (w * A))) / w
+    stick = 2.0 * A / velocity
+    return dict(
+        force_max=mu_s * normal_force,
+        force_min=(2 * mu_k - mu_s) * normal_force,
+        slip_time=slip,
+        stick_time=stick,
+        period=slip + stick,
+        slip_distance=velocity * (slip + stick),
+    )
+
+
+def free_oscillation(t, mass: float, stiffness: float, velocity: float, x0: float, v0: float, t0: float, xd0: float):
+    """Position (m) of a frictionless body pulled by a spring whose end moves as ``xd0 + V (t - t0)``."""
+    w = math.sqrt(stiffness / mass)
+    tau = np.asarray(t, dtype=float) - t0
+    xi0, dxi0 = x0 - xd0, v0 - velocity
+    return xd0 + velocity * tau + xi0 * np.cos(w * tau) + dxi0 / w * np.sin(w * tau)
+
+
+def mindlin_loading(u, mu_n: float, u_slip: float):
+    """Mindlin's first loading curve ``F = mu N [1 - (1 - u/u_s)^{3/2}]`` (N), full slip beyond ``u_s``.
+
+    ``u_slip = mu E* d / G*`` in MDR variables (d the indentation).
+    """
+    r = np.clip(1.0 - np.asarray(u, dtype=float) / u_slip, 0.0, None)
+    return mu_n * (1.0 - r**1.5)
+
+
+def mindlin_loop(u, u_amp: float, mu_n: float, u_slip: float, branch: str):
+    """Steady Mindlin-Deresiewicz loop (``u_amp <= u_slip``): unloading or reloading branch (N).
+
+    Masing's rule: ``F_unload(u) = F* - 2 F_load((u_amp - u)/2)``,
+    ``F_reload(u) = -F* + 2 F_load((u + u_amp)/2)``, ``F* = F_load(u_amp)``.
+    """
+    u = np.asarray(u, dtype=float)
+    f_star = mindlin_loading(u_amp, mu_n, u_slip)
+    if branch == "unload":
+        return f_star - 2.0 * mindlin_loading(0.5 * (u_amp - u), mu_n, u_slip)
+    return -f_star + 2.0 * mindlin_loading(0.5 * (u + u_amp), mu_n, u_slip)
+
+
+def mindlin_dissipation(u_amp: float, mu_n: float, u_slip: float) -> float:
+    """Energy (J) dissipated per cycle of the steady loop (area between the two branches)."""
+    from scipy.integrate import quad
+
+    return quad(lambda u: float(mindlin_loop(u, u_amp, mu_n, u_slip, "unload") - mindlin_loop(u, u_amp, mu_n, u_slip, "reload")),
+                -u_amp, u_amp, epsabs=0, epsrel=1e-12)[0]
