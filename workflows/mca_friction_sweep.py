@@ -33,6 +33,7 @@ COLUMNS = (
     ("mu_err", "mu_err", 1.0, "{:.3f}"),
     ("steady", "mu_steady", None, "{}"),
     ("layer (nm)", "layer_depth_m", 1e9, "{:.2f}"),
+    ("layer resolved", "layer_resolved", None, "{}"),
     ("layer offset (nm)", "layer_offset_m", 1e9, "{:.2f}"),
     ("mixed (nm)", "mixed_width_m", 1e9, "{:.2f}"),
     ("D (m^2/s)", "diffusion_m2_s", 1.0, "{:.3g}"),
@@ -80,6 +81,7 @@ def main(argv=None) -> int:
     """Run the sweep; returns 0 if every run finished, 3 if some failed, 2 on bad input."""
     from tribolmp.analysis.plots import plot_friction, plot_profiles, plot_snapshot
     from tribolmp.analysis.profiles import CompositionProfile, VelocityProfile
+    from tribolmp.analysis.rates import compute_rates
     from tribolmp.cli import float_list
     from tribolmp.errors import RunError, SetupError
     from tribolmp.lammps.mca import preset_params, run_mca
@@ -98,6 +100,8 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=1, help="seed of the rough surfaces (same for every run)")
     ap.add_argument("--out", default="mca_sweep", help="output folder")
     ap.add_argument("--resume", action="store_true", help="skip finished runs, resume interrupted ones")
+    ap.add_argument("--reanalyse", action="store_true",
+                    help="no LAMMPS: recompute rates.json and figures of the finished runs in --out")
     args = ap.parse_args(argv)
     preset = args.preset or ("smoke" if args.quick else "default")
     overrides = {k: v for k, v in (("duration", args.duration), ("box_length", args.box_length),
@@ -115,23 +119,26 @@ def main(argv=None) -> int:
             try:
                 params = preset_params(preset, dim=args.dim, sliding_velocity=v, pressure=p, **overrides)
                 rates_path = run_dir / "rates.json"
-                if args.resume and rates_path.exists():
-                    rates = json.loads(rates_path.read_text())
-                    row.update(json.loads((run_dir / "meta.json").read_text()))
-                    row.update(velocity_m_s=v, pressure_Pa=p)
+                if (args.resume and rates_path.exists()) or args.reanalyse:
+                    if not (run_dir / "traj.lammpstrj").exists():
+                        raise RunError(f"{run_dir}: no finished run to reanalyse")
+                    rates = compute_rates(run_dir) if args.reanalyse else json.loads(rates_path.read_text())
+                    meta = json.loads((run_dir / "meta.json").read_text())
+                    row.update(natoms=meta.get("n_atoms"), wall_time_s=meta.get("wall_time_s"),
+                               atom_steps_per_s=meta.get("atom_steps_per_s"))
                 else:
                     res = run_mca(params, run_dir, seed=args.seed, resume=args.resume, np=args.np)
                     rates = res.get("rates") or {}
                     row.update(natoms=res.natoms, wall_time_s=res.wall_time_s, atom_steps_per_s=res.atom_steps_per_s)
                 row.update({k: rates.get(k) for k in rates if k not in ("units", "provenance", "layer_persistence")})
-                row["natoms"] = row.get("natoms") or row.get("n_atoms")
-                row["status_text"] = "ok" if not rates.get("warnings") else "; ".join(rates["warnings"])[:200]
+                warn = rates.get("warnings") or []
+                row["status_text"] = "ok" if not warn else f"{len(warn)} warning(s), first: {warn[0][:70]}"
                 plot_friction(run_dir, run_dir / "mu_t.png", title=name)
                 plot_snapshot(run_dir, run_dir / "snapshot.png", title=f"{name}: last frame")
                 vp = VelocityProfile.from_output(run_dir).run(frames=_steady(rates, run_dir))
                 cp = CompositionProfile.from_output(run_dir).run(frames=_steady(rates, run_dir))
                 plot_profiles(vp.results, cp.results, run_dir / "profiles.png", title=name)
-            except SetupError as exc:
+            except (SetupError, OSError) as exc:
                 row["status_text"] = f"rejected: {exc}"
                 failed += 1
             except RunError as exc:

@@ -37,8 +37,9 @@ def test_default_scene_plan():
     assert plan["topography"].needs == ("nanoscale",)
     assert plan["contact"].needs == ("topography",)
     assert "dry" in plan["lubrication"].reason
-    # The potential model of tribospectroscopy does not consume the contact stiffness.
-    assert plan["tribospectroscopy"].needs == ()
+    # Tribospectroscopy models the probe's own tips; from the chain it takes only mu.
+    assert plan["tribospectroscopy"].needs == ("nanoscale",)
+    assert plan["macroscale"].needs == ("contact", "nanoscale")
 
 
 def test_rates_given_scene_never_plans_lammps():
@@ -54,7 +55,8 @@ def test_lubricated_scene_plan():
     assert plan.running == ["contact", "lubrication", "macroscale"]
     assert "no [topography]" in plan["topography"].reason and "sphere" in plan["topography"].reason
     assert plan["contact"].options["method"] == "mdr"
-    assert plan["macroscale"].needs == ("contact", "lubrication")
+    assert plan["macroscale"].needs == ("contact",)
+    assert plan["macroscale"].options["contact_law"] == "mdr"
 
 
 def test_polishing_scene_plan():

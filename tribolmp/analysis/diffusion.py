@@ -7,7 +7,7 @@ from MDAnalysis.analysis.base import AnalysisBase
 
 from ..errors import DataFileError, ParameterError
 from ..models.base import check_range
-from .outputs import MOL_BASE, MOL_LOWER, MOL_SLIDER, MOL_UPPER, NM, MCAMeta, open_trajectory, read_meta
+from .outputs import MOL_BASE, MOL_LOWER, MOL_SLIDER, MOL_UPPER, NM, FromOutput, MCAMeta
 from .profiles import interface_height
 from .stats import linear_fit, msd_fft
 
@@ -49,7 +49,7 @@ def surface_selection(heights, mols, y0, depth) -> np.ndarray:
     return np.nonzero(near & np.isin(mols, (MOL_LOWER, MOL_UPPER)))[0]
 
 
-class LateralDiffusion(AnalysisBase):
+class LateralDiffusion(FromOutput, AnalysisBase):
     """Lateral MSD of surface automata relative to their body; D from MSD = 2 n D t.
 
     Surface automata are those of the lower (mol 2) and upper (mol 3) bodies
@@ -77,8 +77,10 @@ class LateralDiffusion(AnalysisBase):
     fit_range : (float, float)
         Lag times used in the fit, as fractions of the analysed time span.
 
-    Results
-    -------
+    Attributes
+    ----------
+    results
+        MDAnalysis ``Results`` holding the following fields.
     lag_s, msd_m2
         Lag times (s) and the MSD of both bodies together (m^2).
     msd_lower_m2, msd_upper_m2
@@ -106,12 +108,6 @@ class LateralDiffusion(AnalysisBase):
             raise ParameterError("fit_range", "lo < hi in [0, 1]", fit_range)
         self._fit_range = (float(lo), float(hi))
         self._lat = list(meta.lateral_axes)
-
-    @classmethod
-    def from_output(cls, out_dir, **kwargs):
-        """Open ``out_dir`` and build the analysis."""
-        meta = read_meta(out_dir)
-        return cls(open_trajectory(out_dir, meta), meta, **kwargs)
 
     def _prepare(self):
         ax = self._meta.normal_axis

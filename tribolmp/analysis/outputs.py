@@ -51,6 +51,7 @@ __all__ = [
     "read_friction_csv",
     "open_trajectory",
     "resume_frames",
+    "FromOutput",
     "trajectory_path",
 ]
 
@@ -454,6 +455,16 @@ def open_trajectory(out_dir: str | Path, meta: MCAMeta | None = None, dump: str 
             dt=dt_ps,
         )
     return u
+
+
+class FromOutput:
+    """Mixin of the trajectory analyses: ``Class.from_output(out_dir, **options)``."""
+
+    @classmethod
+    def from_output(cls, out_dir, **kwargs):
+        """Open the MCA output directory ``out_dir`` and build the analysis on it."""
+        meta = read_meta(out_dir)
+        return cls(open_trajectory(out_dir, meta), meta, **kwargs)
 
 
 #: Conversion factor from dump lengths (nm) to metres.

@@ -24,6 +24,26 @@ BODY_COLOURS = {
 }
 
 
+def _figure(plt, ax, path, size):
+    if ax is not None:
+        return ax.figure, ax, False
+    if path is None:
+        from ..errors import ParameterError
+
+        raise ParameterError("path", "a PNG path when no axes are given", None)
+    fig, ax = plt.subplots(figsize=size)
+    return fig, ax, True
+
+
+def _finish(plt, fig, ax, own, path, dpi):
+    if not own:
+        return ax
+    path = Path(path)
+    fig.savefig(path, dpi=dpi, bbox_inches="tight")
+    plt.close(fig)
+    return path
+
+
 def _pyplot():
     import matplotlib
 
@@ -33,7 +53,7 @@ def _pyplot():
     return plt
 
 
-def plot_friction(source, path, *, title: str | None = None) -> Path:
+def plot_friction(source, path=None, *, ax=None, title: str | None = None):
     """Plot mu(t) with the detected steady start and the steady mean +- error.
 
     Parameters
@@ -41,21 +61,23 @@ def plot_friction(source, path, *, title: str | None = None) -> Path:
     source : str, Path or Result
         An MCA output directory / ``friction.csv``, or the ``results`` of a
         :class:`~tribolmp.analysis.friction.FrictionCoefficient` run.
-    path : str or Path
-        PNG to write.
+    path : str or Path, optional
+        PNG to write (with its own figure).
+    ax : matplotlib Axes, optional
+        Draw into these axes instead (e.g. a panel of a report); nothing is saved.
     title : str, optional
         Figure title.
 
     Returns
     -------
-    Path
-        The PNG written.
+    Path or Axes
+        The PNG written, or ``ax`` when drawing into given axes.
     """
     from .friction import FrictionCoefficient
 
     res = source if hasattr(source, "mu_t") else FrictionCoefficient(source).run().results
     plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(6.4, 3.6))
+    fig, ax, own = _figure(plt, ax, path, (6.4, 3.6))
     t_ns = np.asarray(res.time_s) / 1e-9
     ax.plot(t_ns, res.mu_t, lw=0.6, color="#1f77b4", label=r"$\mu(t)=F_t/F_n$")
     t0 = res.steady_start_s / 1e-9
@@ -67,14 +89,11 @@ def plot_friction(source, path, *, title: str | None = None) -> Path:
     ax.legend(loc="best", fontsize=8)
     if title:
         ax.set_title(title, fontsize=9)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
-    return path
+    return _finish(plt, fig, ax, own, path, dpi=130)
 
 
-def plot_snapshot(out_dir, path, *, frame: int = -1, title: str | None = None, slab_m: float | None = None) -> Path:
+def plot_snapshot(out_dir, path=None, *, ax=None, frame: int = -1, title: str | None = None,
+                  slab_m: float | None = None):
     """Draw the automata of one dump frame coloured by body (like the seed's Fig. 9).
 
     Automata are drawn as discs of their true diameter.  In 3D only a slab
@@ -85,8 +104,10 @@ def plot_snapshot(out_dir, path, *, frame: int = -1, title: str | None = None, s
     ----------
     out_dir : str or Path
         MCA output directory.
-    path : str or Path
-        PNG to write.
+    path : str or Path, optional
+        PNG to write (with its own figure).
+    ax : matplotlib Axes, optional
+        Draw into these axes instead; nothing is saved.
     frame : int
         Dump frame (default the last one).
     title : str, optional
@@ -96,8 +117,8 @@ def plot_snapshot(out_dir, path, *, frame: int = -1, title: str | None = None, s
 
     Returns
     -------
-    Path
-        The PNG written.
+    Path or Axes
+        The PNG written, or ``ax`` when drawing into given axes.
     """
     from matplotlib.collections import EllipseCollection
     from matplotlib.patches import Patch
@@ -126,7 +147,7 @@ def plot_snapshot(out_dir, path, *, frame: int = -1, title: str | None = None, s
     colours = np.array([BODY_COLOURS.get(m, ("#999999", ""))[0] for m in mol[keep]])
     width = 9.0
     aspect = (ys.max() - ys.min() + 2) / box[0]
-    fig, ax = plt.subplots(figsize=(width, max(2.5, width * aspect + 0.8)))
+    fig, ax, own = _figure(plt, ax, path, (width, max(2.5, width * aspect + 0.8)))
     d = 2 * rad[keep]
     coll = EllipseCollection(d, d, np.zeros_like(d), units="xy", offsets=np.column_stack([xs, ys]),
                              offset_transform=ax.transData, facecolors=colours, edgecolors="none")
@@ -141,29 +162,28 @@ def plot_snapshot(out_dir, path, *, frame: int = -1, title: str | None = None, s
     handles.append(plt.Line2D([], [], color="k", ls="--", lw=0.8, label="original interface"))
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=5, fontsize=7, frameon=False)
     ax.set_title(title or f"t = {ts.time * 1e-3:.3g} ns", fontsize=9)
-    path = Path(path)
-    fig.savefig(path, dpi=150, bbox_inches="tight")
-    plt.close(fig)
-    return path
+    return _finish(plt, fig, ax, own, path, dpi=150)
 
 
-def plot_profiles(velocity, composition, path, *, title: str | None = None) -> Path:
+def plot_profiles(velocity, composition, path=None, *, ax=None, title: str | None = None):
     """Velocity v_x/V and upper-body fraction against height above the original interface.
 
     Parameters
     ----------
     velocity, composition : Results
         ``results`` of :class:`VelocityProfile` and :class:`CompositionProfile`.
-    path : str or Path
-        PNG to write.
+    path : str or Path, optional
+        PNG to write (with its own figure).
+    ax : matplotlib Axes, optional
+        Draw into these axes instead; nothing is saved.
 
     Returns
     -------
-    Path
-        The PNG written.
+    Path or Axes
+        The PNG written, or ``ax``.
     """
     plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(4.2, 4.8))
+    fig, ax, own = _figure(plt, ax, path, (4.2, 4.8))
     y0 = velocity.interface_height_m
     z = (np.asarray(velocity.heights_m) - y0) / 1e-9
     ax.plot(np.asarray(velocity.vx_m_s) / velocity.reference_velocity_m_s, z, "o-", ms=3, label=r"$v_x/V$")
@@ -179,8 +199,4 @@ def plot_profiles(velocity, composition, path, *, title: str | None = None) -> P
     ax.legend(fontsize=8, loc="lower right")
     ax.set_title(title or f"layer {velocity.layer_depth_m / 1e-9:.3g} nm, mixed {composition.mixed_width_m / 1e-9:.3g} nm",
                  fontsize=9)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
-    return path
+    return _finish(plt, fig, ax, own, path, dpi=130)

@@ -21,7 +21,7 @@ from MDAnalysis.analysis.base import AnalysisBase
 
 from ..errors import DataFileError, ParameterError
 from ..models.base import check_range
-from .outputs import MOL_SLIDER, MOL_UPPER, NM, MCAMeta, open_trajectory, read_meta
+from .outputs import MOL_SLIDER, MOL_UPPER, NM, FromOutput, MCAMeta
 from .stats import crossing_heights, isotonic_fit
 
 __all__ = ["VelocityProfile", "CompositionProfile", "interface_height", "layer_width"]
@@ -125,7 +125,7 @@ class _HeightBinned:
         return [slice(a, b) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
 
 
-class VelocityProfile(_HeightBinned, AnalysisBase):
+class VelocityProfile(_HeightBinned, FromOutput, AnalysisBase):
     """Time-averaged sliding velocity v_x(h) and the sheared-layer depth.
 
     Parameters
@@ -145,8 +145,10 @@ class VelocityProfile(_HeightBinned, AnalysisBase):
         The analysed frames are also split into this many consecutive
         windows, each giving a layer depth and position (persistence).
 
-    Results
-    -------
+    Attributes
+    ----------
+    results
+        MDAnalysis ``Results`` holding the following fields.
     heights_m, vx_m_s, counts
         Bin centres (m), mean v_x per bin (m/s), automaton-frames per bin.
     layer_depth_m, layer_bottom_m, layer_top_m, layer_center_m
@@ -167,12 +169,6 @@ class VelocityProfile(_HeightBinned, AnalysisBase):
             raise ParameterError("velocity_reference", "one of ['slider', 'meta']", velocity_reference)
         self._vref = velocity_reference
         self._n_windows = int(n_windows)
-
-    @classmethod
-    def from_output(cls, out_dir, **kwargs):
-        """Open ``out_dir`` and build the analysis."""
-        meta = read_meta(out_dir)
-        return cls(open_trajectory(out_dir, meta), meta, **kwargs)
 
     def _prepare(self):
         self._prepare_bins()
@@ -226,6 +222,10 @@ class VelocityProfile(_HeightBinned, AnalysisBase):
         r.layer_top_m = hi
         r.layer_center_m = 0.5 * (lo + hi)
         r.layer_offset_m = 0.5 * (lo + hi) - y0
+        # slip on a single plane still gives a 10-90 % width of ~0.8-1.7 bins (interpolation
+        # between bin centres): only a width of two bins or more is a resolved layer
+        r.bin_width_m = self._bin_nm * NM
+        r.layer_resolved = bool(np.isfinite(width) and width >= 2 * r.bin_width_m)
         r.time_s = self._time
         wt, wd, wo = [], [], []
         for sl in self._windows(self.n_frames, self._n_windows):
@@ -240,7 +240,7 @@ class VelocityProfile(_HeightBinned, AnalysisBase):
         r.units = {"heights_m": "m", "vx_m_s": "m/s", "layer_depth_m": "m", "layer_offset_m": "m",
                    "interface_height_m": "m", "reference_velocity_m_s": "m/s", "time_s": "s"}
 
-class CompositionProfile(_HeightBinned, AnalysisBase):
+class CompositionProfile(_HeightBinned, FromOutput, AnalysisBase):
     """Fraction of upper-body automata per height: mixing and penetration.
 
     The lower side is mol 1 (base) and 2 (lower body); the upper side mol
@@ -264,8 +264,10 @@ class CompositionProfile(_HeightBinned, AnalysisBase):
     n_windows : int
         Windows for the time-resolved mixed width (persistence).
 
-    Results
-    -------
+    Attributes
+    ----------
+    results
+        MDAnalysis ``Results`` holding the following fields.
     heights_m, upper_fraction, counts
         Bin centres (m), time-averaged upper-body fraction, automaton-frames.
     mixed_width_m
@@ -282,12 +284,6 @@ class CompositionProfile(_HeightBinned, AnalysisBase):
         self._setup_bins(meta, bin_width_m, reference_frame)
         self._thr = check_range("threshold", threshold, 0.0, 0.5, lo_open=True, hi_open=True)
         self._n_windows = int(n_windows)
-
-    @classmethod
-    def from_output(cls, out_dir, **kwargs):
-        """Open ``out_dir`` and build the analysis."""
-        meta = read_meta(out_dir)
-        return cls(open_trajectory(out_dir, meta), meta, **kwargs)
 
     def _prepare(self):
         self._prepare_bins()

@@ -146,31 +146,34 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
     if note:
         warnings_.append(note)
     frames = frames_all[sel]
-    if frames.size < 4:
-        raise DataFileError(f"{out / 'traj.lammpstrj'}: expected >= 4 dump frames to analyse, got {frames.size}")
 
-    vp = VelocityProfile(u, meta, bin_width_m=bin_width_m).run(frames=frames).results
-    cp = CompositionProfile(u, meta, bin_width_m=bin_width_m).run(frames=frames).results
-    bt = BondTurnover(u, meta).run(frames=frames).results
-    try:
-        ld = LateralDiffusion(u, meta).run(frames=frames).results
-    except DataFileError as exc:
-        ld = None
-        warnings_.append(f"diffusion: {exc}")
-    try:
-        mt = MassTransfer(u, meta, window=window).run(frames=frames).results
-    except DataFileError as exc:
-        mt = None
-        warnings_.append(f"transfer: {exc}")
+    def attempt(name, make):
+        # one failing analysis (e.g. too few frames) must not lose the others
+        if frames.size < 4:
+            warnings_.append(f"{name}: skipped, only {frames.size} dump frames (need >= 4)")
+            return None
+        try:
+            return make().run(frames=frames).results
+        except DataFileError as exc:
+            warnings_.append(f"{name}: {exc}")
+            return None
+
+    vp = attempt("velocity profile", lambda: VelocityProfile(u, meta, bin_width_m=bin_width_m))
+    cp = attempt("composition profile", lambda: CompositionProfile(u, meta, bin_width_m=bin_width_m))
+    bt = attempt("bond turnover", lambda: BondTurnover(u, meta))
+    ld = attempt("diffusion", lambda: LateralDiffusion(u, meta))
+    mt = attempt("transfer", lambda: MassTransfer(u, meta, window=window))
 
     d = meta.automaton_diameter_m
-    layer = _finite(vp.layer_depth_m)
-    if layer is not None and layer >= d:
+    layer = None if vp is None else _finite(vp.layer_depth_m)
+    resolved = vp is not None and bool(vp.layer_resolved) and layer is not None
+    if resolved and layer >= d:
         l_step, l_src = layer, "layer_depth_m"
     else:
         l_step, l_src = d, "automaton_diameter_m"
         warnings_.append(
-            "step_length_m: no sheared layer >= one automaton diameter resolved; using the automaton diameter"
+            "step_length_m: no sheared layer of two bins or more resolved (slip on a single plane); "
+            "using the automaton diameter"
         )
     D = _finite(ld.diffusion_m2_s) if ld is not None else None
     if D is not None and D <= 0:
@@ -183,6 +186,9 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
     def get(res, key):
         return None if res is None else _finite(res[key])
 
+    def series(res, key):
+        return None if res is None else [_finite(v) for v in res[key]]
+
     time_s = meta.time_s if meta.time_s is not None else float(fr["time_s"][-1])
     rates: dict[str, Any] = {
         "mu": _finite(fc.mu),
@@ -190,10 +196,11 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
         "mu_steady": bool(fc.steady),
         "steady_start_s": _finite(fc.steady_start_s),
         "layer_depth_m": layer,
-        "layer_offset_m": _finite(vp.layer_offset_m),
-        "mixed_width_m": _finite(cp.mixed_width_m),
-        "penetration_upper_m": _finite(cp.penetration_upper_m),
-        "penetration_lower_m": _finite(cp.penetration_lower_m),
+        "layer_offset_m": get(vp, "layer_offset_m"),
+        "layer_resolved": resolved,
+        "mixed_width_m": get(cp, "mixed_width_m"),
+        "penetration_upper_m": get(cp, "penetration_upper_m"),
+        "penetration_lower_m": get(cp, "penetration_lower_m"),
         "diffusion_m2_s": D,
         "diffusion_err_m2_s": get(ld, "diffusion_err_m2_s"),
         "transfer_rate": get(mt, "transfer_rate"),
@@ -201,14 +208,14 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
         "wear_rate": get(mt, "wear_rate"),
         "detachment_rate": get(mt, "detachment_rate"),
         "reattachment_rate": get(mt, "reattachment_rate"),
-        "links_broken_per_s": _finite(bt.broken_per_s),
-        "links_formed_per_s": _finite(bt.formed_per_s),
-        "link_break_rate": _finite(bt.break_rate_per_link),
+        "links_broken_per_s": get(bt, "broken_per_s"),
+        "links_formed_per_s": get(bt, "formed_per_s"),
+        "link_break_rate": get(bt, "break_rate_per_link"),
         "step_length_m": l_step,
         "step_length_source": l_src,
         "step_time_s": tau,
         "time_s": _finite(time_s),
-        "analysis_start_s": float(times[sel][0]),
+        "analysis_start_s": float(times[sel][0]) if sel.size else None,
         "velocity_m_s": meta.velocity_m_s,
         "pressure_Pa": meta.pressure_Pa,
         "automaton_diameter_m": d,
@@ -217,10 +224,10 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
     if meta.atom_steps_per_s is not None:
         rates["atom_steps_per_s"] = meta.atom_steps_per_s
     rates["layer_persistence"] = {
-        "window_time_s": [_finite(v) for v in vp.window_time_s],
-        "layer_depth_m": [_finite(v) for v in vp.window_layer_depth_m],
-        "layer_offset_m": [_finite(v) for v in vp.window_layer_offset_m],
-        "mixed_width_m": [_finite(v) for v in cp.window_mixed_width_m],
+        "window_time_s": series(vp, "window_time_s"),
+        "layer_depth_m": series(vp, "window_layer_depth_m"),
+        "layer_offset_m": series(vp, "window_layer_offset_m"),
+        "mixed_width_m": series(cp, "window_mixed_width_m"),
     }
     rates["units"] = {k: v for k, v in RATES_UNITS.items() if k in rates}
     rates["warnings"] = warnings_
@@ -241,7 +248,7 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
             "wear_rate": "transfer_rate * V (1/s)",
             "detachment_rate": "automata leaving the body they moved with, per surface automaton per second",
             "reattachment_rate": "automata joining a body, per layer automaton per second",
-            "step_length_m": "layer depth if >= automaton diameter, else the diameter",
+            "step_length_m": "layer depth if resolved (>= 2 bins and >= d), else the automaton diameter",
             "step_time_s": "step_length_m**2 / diffusion_m2_s",
         },
     }

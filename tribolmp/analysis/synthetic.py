@@ -370,4 +370,5 @@ def make_friction(out_dir, rng, *, n=4000, dt=1e-11, mu=0.3, phi=0.9, sigma_eps=
     fn = np.full(n, normal)
     write_friction_csv(out / "friction.csv", t, m * fn, fn, velocity * t)
     n_steady = int(np.sum(t > 5 * tau))
-    return {"mu": mu, "mu_err": ar1_mean_stderr(phi, sigma_eps, n_steady), "transient_end_s": 5 * tau}
+    err = ar1_mean_stderr(phi, sigma_eps, n_steady) if n_steady > 1 else float("nan")
+    return {"mu": mu, "mu_err": err, "transient_end_s": 5 * tau}

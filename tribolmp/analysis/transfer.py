@@ -35,7 +35,7 @@ from MDAnalysis.analysis.base import AnalysisBase
 from ..errors import DataFileError
 from ..models.base import check_int, check_range
 from .diffusion import Unwrapper, surface_selection
-from .outputs import MOL_LOWER, MOL_SLIDER, MOL_UPPER, NM, MCAMeta, open_trajectory, read_meta
+from .outputs import MOL_LOWER, MOL_SLIDER, MOL_UPPER, NM, FromOutput, MCAMeta
 from .profiles import interface_height
 
 __all__ = ["BondTurnover", "MassTransfer", "STATE_LOWER", "STATE_LAYER", "STATE_UPPER", "count_events"]
@@ -44,7 +44,7 @@ __all__ = ["BondTurnover", "MassTransfer", "STATE_LOWER", "STATE_LAYER", "STATE_
 STATE_LOWER, STATE_LAYER, STATE_UPPER = 0, 1, 2
 
 
-class BondTurnover(AnalysisBase):
+class BondTurnover(FromOutput, AnalysisBase):
     """Links broken and formed per interval, from changes of ``c_nbond``.
 
     Parameters
@@ -54,8 +54,10 @@ class BondTurnover(AnalysisBase):
     meta : MCAMeta
         The run's metadata.
 
-    Results
-    -------
+    Attributes
+    ----------
+    results
+        MDAnalysis ``Results`` holding the following fields.
     time_s, bonds
         Frame times (s) and the number of links (sum of c_nbond / 2).
     broken, formed
@@ -70,12 +72,6 @@ class BondTurnover(AnalysisBase):
     def __init__(self, universe, meta: MCAMeta, **kwargs):
         super().__init__(universe.trajectory, **kwargs)
         self._meta = meta
-
-    @classmethod
-    def from_output(cls, out_dir, **kwargs):
-        """Open ``out_dir`` and build the analysis."""
-        meta = read_meta(out_dir)
-        return cls(open_trajectory(out_dir, meta), meta, **kwargs)
 
     def _prepare(self):
         n = self.n_frames
@@ -142,7 +138,7 @@ def count_events(states: np.ndarray, own: np.ndarray) -> dict[str, np.ndarray]:
     }
 
 
-class MassTransfer(AnalysisBase):
+class MassTransfer(FromOutput, AnalysisBase):
     """Transfer, detachment and reattachment of automata between the bodies.
 
     Parameters
@@ -154,14 +150,17 @@ class MassTransfer(AnalysisBase):
     window : int, optional
         Frames over which an automaton's velocity is averaged before it is
         classified; default: enough frames for the slider to move one
-        automaton diameter (so that vibration does not flip states).  Events
-        shorter than the window are missed: the counts are lower bounds.
+        automaton diameter (so that vibration does not flip states), but at
+        most a third of the analysed frames (``results.window_limited``).
+        Events shorter than the window are missed: the counts are lower bounds.
     surface_depth_m : float, optional
         Depth on each side of the original interface defining the surface
         automata that normalise the rates (m); default 2 d.
 
-    Results
-    -------
+    Attributes
+    ----------
+    results
+        MDAnalysis ``Results`` holding the following fields.
     time_s, sliding_distance_m
         Times of the classified frames (s), slider displacement over them (m).
     n_surface
@@ -190,18 +189,13 @@ class MassTransfer(AnalysisBase):
     def __init__(self, universe, meta: MCAMeta, *, window=None, surface_depth_m=None, **kwargs):
         super().__init__(universe.trajectory, **kwargs)
         self._meta = meta
+        self._auto_window = window is None
         if window is None:
             step = meta.velocity_m_s * meta.dump_interval_s
             window = max(1, math.ceil(meta.automaton_diameter_m / step))
         self._w = check_int("window", window, 1)
         depth = 2 * meta.automaton_diameter_m if surface_depth_m is None else surface_depth_m
         self._depth_nm = check_range("surface_depth_m", depth, 0.0, None, lo_open=True, unit="m") / NM
-
-    @classmethod
-    def from_output(cls, out_dir, **kwargs):
-        """Open ``out_dir`` and build the analysis."""
-        meta = read_meta(out_dir)
-        return cls(open_trajectory(out_dir, meta), meta, **kwargs)
 
     def _prepare(self):
         ax = self._meta.normal_axis
@@ -247,7 +241,13 @@ class MassTransfer(AnalysisBase):
 
     def _conclude(self):
         r = self.results
-        w, T = self._w, self.n_frames
+        T = self.n_frames
+        r.window_limited = False
+        if self._auto_window and self._w > max(1, T // 3):
+            # a short run: classify over a third of it rather than not at all
+            self._w = max(1, T // 3)
+            r.window_limited = True
+        w = self._w
         if T <= w + 1:
             raise DataFileError(f"trajectory: frames: expected more than window+1 = {w + 1} analysed frames, got {T}")
         dt = self._time[w:] - self._time[:-w]

@@ -57,6 +57,15 @@ def run_benchmark(script: Path, *, quick: bool = True, timeout: float = 900.0) -
     return {"script": script.name, "returncode": rc, "time_s": time.perf_counter() - t0, "stdout": out, "error": tail if rc else ""}
 
 
+def _short(cell: str) -> str:
+    """4 significant digits for numbers in the markdown table (the CSV keeps full precision)."""
+    try:
+        v = float(cell)
+    except ValueError:
+        return cell
+    return cell if cell.strip().lstrip("-").isdigit() else f"{v:.4g}"
+
+
 def _read_csv(path: Path) -> tuple[list[str], list[list[str]]]:
     with open(path, newline="", encoding="utf-8") as fh:
         rows = list(csv.reader(fh))
@@ -152,7 +161,7 @@ def gather(
                 md.append("| " + " | ".join(t["header"]) + " |")
                 md.append("|" + "---|" * len(t["header"]))
                 for j, r in enumerate(t["rows"]):
-                    md.append("| " + " | ".join(r) + " |")
+                    md.append("| " + " | ".join(_short(c) for c in r) + " |")
                     for col, val in zip(t["header"], r):
                         w.writerow([e["name"], t["file"], j, col, val])
         md.append("")
@@ -162,3 +171,72 @@ def gather(
         for t in e["tables"]:
             t.pop("mtime", None)
     return {"benchmarks_dir": str(bdir) if bdir else None, "benchmarks": entries, "markdown": str(md_path), "csv": str(csv_path)}
+
+
+def build_contact_table(results_dir: str | Path) -> dict[str, Any]:
+    """The planner's contact speed-error table, built from the contact benchmark's CSVs.
+
+    Rows per grid ``n`` of ``contact_rough_mdr_vs_bem[_quick].csv`` (the rough
+    surface of that benchmark, ``n x n`` pixels, MDR ensemble of 16):
+
+    * ``mdr``: ``rel_error`` = max over pressures of ``|k_MDR / k_BEM,punch - 1|``
+      (the non-periodic BEM is the 3D reference), ``time_s`` = MDR wall time per pressure;
+    * ``bem``: ``rel_error`` = the non-periodic BEM's own discretization error at
+      grid ``n`` on the Hertz case of ``contact_speed_vs_error[_quick].csv``
+      (indentation vs the analytic solution; a smooth-contact proxy: the rough
+      surface has no exact solution), ``time_s`` = max BEM punch wall time per pressure.
+
+    The full-size CSVs are preferred over ``_quick`` ones for the same grid.
+    """
+    rdir = Path(results_dir)
+    rough_rows: dict[int, list[dict[str, str]]] = {}
+    hertz: dict[int, float] = {}
+    sources = []
+    for suffix in ("_quick", ""):  # full-size files last, so they win
+        rp = rdir / f"contact_rough_mdr_vs_bem{suffix}.csv"
+        if rp.exists():
+            header, rows = _read_csv(rp)
+            by_grid: dict[int, list[dict[str, str]]] = {}
+            for r in rows:
+                d = dict(zip(header, r))
+                by_grid.setdefault(int(float(d["grid"])), []).append(d)
+            rough_rows.update(by_grid)
+            sources.append(rp.name)
+        hp = rdir / f"contact_speed_vs_error{suffix}.csv"
+        if hp.exists():
+            header, rows = _read_csv(hp)
+            for r in rows:
+                d = dict(zip(header, r))
+                if d["case"] == "hertz" and d["method"] == "bem":
+                    hertz[int(float(d["resolution"]))] = float(d["error"])
+            sources.append(hp.name)
+    out_rows = []
+    for n, rows in sorted(rough_rows.items()):
+        out_rows.append({
+            "method": "mdr",
+            "mesh": n,
+            "rel_error": max(abs(float(d["ratio_mdr_punch"]) - 1.0) for d in rows),
+            "time_s": max(float(d["mdr_time_s"]) for d in rows),
+        })
+        if n in hertz:
+            out_rows.append({
+                "method": "bem",
+                "mesh": n,
+                "rel_error": hertz[n],
+                "time_s": max(float(d["bem_punch_time_s"]) for d in rows),
+            })
+    return {
+        "provenance": (
+            "built by tribolmp.chain.bench.build_contact_table from benchmarks/results/"
+            + ", ".join(sources)
+            + " (written by benchmarks/contact_speed_vs_error.py). mdr rows: max over pressures of "
+            "|k_MDR/k_BEM,punch - 1| on that benchmark's rough surface at grid n (16 profiles), time = MDR wall "
+            "time per pressure. bem rows: the non-periodic BEM's discretization error at grid n on Hertz "
+            "(indentation vs analytic; a proxy, the rough surface has no exact solution), time = BEM punch "
+            "wall time per pressure on the rough surface."
+        ),
+        "quantity": "relative error of the normal contact stiffness (MDR vs non-periodic BEM; BEM vs Hertz)",
+        "mesh_unit": "grid points per side of the height map (MDR: spring rows of that length)",
+        "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+        "rows": out_rows,
+    }

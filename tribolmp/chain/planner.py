@@ -202,14 +202,14 @@ def plan_scene(scene: Scene, *, table: dict[str, Any] | None = None) -> Plan:
     want_macro = "stick_slip" in req
     want_tribo = "tribospectroscopy" in req and scene.tribospectroscopy is not None
     want_lub = scene.lubricant is not None
-    # The stiffness model of tribospectroscopy needs the contact stiffness k; the rigid body rides on it.
-    want_contact = "stiffness" in req or want_macro or (want_tribo and scene.tribospectroscopy.model == "stiffness")
+    # The rigid body rides on the contact.  (Tribospectroscopy's contacts are the probe's two tips,
+    # modelled by the tribospectroscopy package itself from [geometry]; they need only mu.)
+    want_contact = "stiffness" in req or want_macro
     surface_from_topo = want_contact and scene.geometry.profile == "rough" and scene.topography is not None
     want_topo = "topography" in req or surface_from_topo
     if want_contact and scene.geometry.profile == "rough" and scene.topography is None and scene.roughness is None:
         raise SceneError("[roughness]", "a [roughness] or [topography] section for geometry.profile = 'rough'", "nothing", src)
-    tribo_stiff = want_tribo and scene.tribospectroscopy.model == "stiffness"
-    rates_consumers = [n for n, w in (("topography", want_topo), ("macroscale", want_macro), ("tribospectroscopy", tribo_stiff)) if w]
+    rates_consumers = [n for n, w in (("topography", want_topo), ("macroscale", want_macro), ("tribospectroscopy", want_tribo)) if w]
     want_rates = bool(req & {"friction", "mca_snapshot", "rates"}) or bool(rates_consumers)
 
     stages: list[StagePlan] = []
@@ -285,8 +285,7 @@ def plan_scene(scene: Scene, *, table: dict[str, Any] | None = None) -> Plan:
         else:
             choice = {}
             method, mesh, why = c.method, None, f"method '{c.method}' set in [contact]"
-        consumers = [n for n, w in (("macroscale", want_macro), ("tribospectroscopy", want_tribo and scene.tribospectroscopy.model == "stiffness")) if w]
-        purpose = "outputs request 'stiffness'" if "stiffness" in req else f"stiffness feeds {', '.join(consumers)}"
+        purpose = "outputs request 'stiffness'" if "stiffness" in req else "stiffness feeds macroscale"
         stages.append(
             StagePlan(
                 "contact",
@@ -317,14 +316,16 @@ def plan_scene(scene: Scene, *, table: dict[str, Any] | None = None) -> Plan:
 
     # -- macroscale
     if want_macro:
-        needs = tuple(n for n in ("contact", "lubrication") if any(s.name == n and s.run for s in stages)) + rates_need
+        needs = tuple(n for n in ("contact",) if any(s.name == n and s.run for s in stages)) + rates_need
+        how = "MDR contact springs of the axisymmetric profile" if scene.geometry.profile != "rough" else "the rough contact's tangential stiffness"
         stages.append(
             StagePlan(
                 "macroscale",
                 True,
-                "outputs request 'stick_slip': rigid body on the contact" + (" with lubricant damping" if want_lub else ""),
+                f"outputs request 'stick_slip': rigid body on {how}, mu from {'nanoscale' if rates_need else '[rates]' if scene.rates is not None else '[load]'}",
                 needs=needs,
-                sections=("kinematics", "load", "material", "counter_material") + rates_sections,
+                sections=("kinematics", "load", "geometry", "material", "counter_material", "contact") + rates_sections,
+                options={"contact_law": "mdr" if scene.geometry.profile != "rough" else "stiffness"},
             )
         )
     else:
@@ -332,16 +333,16 @@ def plan_scene(scene: Scene, *, table: dict[str, Any] | None = None) -> Plan:
 
     # -- tribospectroscopy
     if want_tribo:
-        model = scene.tribospectroscopy.model
-        needs = (("contact",) if model == "stiffness" else ()) + (rates_need if model == "stiffness" else ())
+        ts = scene.tribospectroscopy
         stages.append(
             StagePlan(
                 "tribospectroscopy",
                 True,
-                f"outputs request 'tribospectroscopy': F^2(a), {model} model, {scene.tribospectroscopy.convention} amplitudes",
-                needs=needs,
-                sections=("tribospectroscopy", "load", "material", "counter_material") + (rates_sections if model == "stiffness" else ()),
-                options={"model": model},
+                f"outputs request 'tribospectroscopy': F^2(a), {ts.model} model, {ts.convention} amplitudes, "
+                f"mu from {'nanoscale' if rates_need else '[rates]' if scene.rates is not None else '[load]'}",
+                needs=rates_need,
+                sections=("tribospectroscopy", "load", "geometry", "material", "counter_material", "contact") + rates_sections,
+                options={"model": ts.model},
             )
         )
     elif "tribospectroscopy" in req:

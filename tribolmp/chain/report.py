@@ -235,12 +235,19 @@ def _fig_mu(ax, run: ChainRun) -> None:
     t = np.array([float(r["time_s"]) for r in table])
     f = np.array([float(r["friction_N"]) for r in table])
     n = np.array([float(r["normal_N"]) for r in table])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        mu = np.where(n != 0, f / n, np.nan)
-    ax.plot(t * 1e9, mu, lw=0.8)
+    # While the slider approaches, the normal force is ~0 and F/N is meaningless: show mu only
+    # once the normal force has built up (half its median).
+    loaded = n > 0.5 * np.median(n[n > 0]) if np.any(n > 0) else np.zeros_like(n, dtype=bool)
+    ax.plot(t[loaded] * 1e9, f[loaded] / n[loaded], lw=0.6, label="F_friction / F_normal")
     if "mu" in res.values:
         ax.axhline(res.values["mu"], color="k", ls="--", lw=0.8, label=f"steady mu = {res.values['mu']:.3g}")
-        ax.legend()
+    if res.values.get("steady_start_s"):
+        ax.axvline(res.values["steady_start_s"] * 1e9, color="gray", ls=":", lw=0.8, label="steady start")
+    if np.any(loaded):
+        lo, hi = np.percentile(f[loaded] / n[loaded], [1, 99])
+        pad = 0.2 * (hi - lo)
+        ax.set_ylim(lo - pad, hi + pad)
+    ax.legend(fontsize=7)
     ax.set_xlabel("t (ns)")
     ax.set_ylabel("mu")
 
@@ -249,12 +256,19 @@ def _fig_psd(ax, run: ChainRun) -> None:
     d = np.load(run.result("topography").file("psd"))
     k, s = d["k"], d["psd"]
     m = k > 0
-    ax.loglog(k[m], s[m], ".", ms=2, label="simulated")
+    ax.loglog(k[m], s[m], ".", ms=1.5, color="0.7", label="periodogram")
+    # Log-binned mean: a single periodogram scatters by ~100 %, the bin mean shows the shape.
+    edges = np.geomspace(k[m].min(), k[m].max() * 1.0001, 25)
+    idx = np.digitize(k[m], edges)
+    kb = [k[m][idx == i].mean() for i in range(1, len(edges)) if np.any(idx == i)]
+    sb = [s[m][idx == i].mean() for i in range(1, len(edges)) if np.any(idx == i)]
+    ax.loglog(kb, sb, "o", ms=3, label="log-binned mean")
     if "psd_theory" in d:
         ax.loglog(k[m], d["psd_theory"][m], "k-", lw=1, label="Eq. 23 theory")
     ax.set_xlabel("k (1/m)")
-    ax.set_ylabel("PSD")
-    ax.legend()
+    dim = int(run.result("topography").values.get("dim", 1))
+    ax.set_ylabel(f"PSD (m^{dim + 2})")
+    ax.legend(fontsize=7)
 
 
 def _fig_stiffness(ax, run: ChainRun) -> None:
@@ -270,7 +284,7 @@ def _fig_stiffness(ax, run: ChainRun) -> None:
 
 def _fig_stick_slip(ax, run: ChainRun) -> None:
     d = np.load(run.result("macroscale").file("trajectory"))
-    ax.plot(d["t"], d["friction"], lw=0.8, label="friction force (N)")
+    ax.plot(d["t"], d["friction"], lw=0.8, label="drive-spring force (N)")
     ax.set_xlabel("t (s)")
     ax.set_ylabel("F (N)")
     if "velocity" in d:
@@ -298,6 +312,16 @@ def _fig_lubrication(ax, run: ChainRun) -> None:
     ax.set_ylabel("|F| (N)")
     ax.legend(fontsize=7)
 
+
+_TITLES = {
+    "mca_snapshot": "MCA snapshot (cf. Fig. 9)",
+    "mu_t": "friction coefficient mu(t), nanoscale",
+    "psd": "topography PSD (cf. Fig. 10)",
+    "stiffness": "normal stiffness vs load",
+    "lubrication": "lubrication forces",
+    "stick_slip": "stick-slip of the rigid body",
+    "f2": "tribospectroscopy F^2(a) (cf. Fig. 8)",
+}
 
 _FIGURES = {
     "mca_snapshot": ("nanoscale", "traj", _fig_mca),
@@ -327,7 +351,7 @@ def draw_figures(run: ChainRun) -> tuple[dict[str, str], dict[str, str]]:
         fig, ax = plt.subplots(figsize=(5.5, 3.6), constrained_layout=True)
         try:
             func(ax, run)
-            ax.set_title(_CAPTIONS[name].split(":")[0][:60], fontsize=9)
+            ax.set_title(_TITLES[name], fontsize=9)
             path = folder / f"{name}.png"
             tmp = folder / f".{name}.tmp.png"
             fig.savefig(tmp, dpi=110)

@@ -88,8 +88,8 @@ def _scalars(d: dict[str, Any]) -> dict[str, Any]:
 def _rates_from_upstream(ctx: StageContext) -> tuple[dict[str, Any] | None, str]:
     """The rates dict and where it came from: nanoscale's rates.json, the scene's [rates], or none."""
     if "nanoscale" in ctx.upstream:
-        path = ctx.upstream["nanoscale"].file("rates")
-        return json.loads(path.read_text()), str(path)
+        up = ctx.upstream["nanoscale"]
+        return json.loads(up.file("rates").read_text()), f"nanoscale stage {up.key} (rates.json)"
     if ctx.scene.rates is not None:
         rates = ctx.scene.to_dict()["rates"]
         # The hand-off is a file even when the scene gives the rates, so every stage reads rates the same way.
@@ -130,6 +130,8 @@ def nanoscale(ctx: StageContext) -> StageOutput:
     from ..rng import lammps_seed
 
     mca = require_model("tribolmp.lammps.mca", "run_mca", "params_from_scene")
+    # Without the rates analysis, run_mca writes no rates.json: say so before spending minutes in LAMMPS.
+    require_model("tribolmp.analysis.rates", "compute_rates")
     params = mca.params_from_scene(ctx.scene)
     out = ctx.workdir / "mca"
     # An interrupted run left restart files in the (kept) partial folder: continue from them.
@@ -154,7 +156,8 @@ def nanoscale(ctx: StageContext) -> StageOutput:
         method=str(res.get("method", "mca")),
         message=str(res.get("message", "")),
         nit=int(res.get("nit", 0) or 0),
-        provenance={"lammps_seed_from": ctx.seed, "resumed": resume, "params": _scalars(dict(getattr(params, "__dict__", {})))},
+        provenance={"lammps_seed_from": ctx.seed, "resumed": resume, "params": _scalars(dict(vars(params))),
+                    "rates_provenance": rates.get("provenance", {}), "warnings": rates.get("warnings", [])},
     )
 
 
@@ -194,44 +197,222 @@ def topography(ctx: StageContext) -> StageOutput:
 
 @_stage("lubrication")
 def lubrication(ctx: StageContext) -> StageOutput:
-    """Reduced squeeze and sliding forces at the scene's film (and across gaps), plus polishing if asked."""
-    red = require_model("tribolmp.models.lubrication.reduced", "params_from_scene", "squeeze_force", "sliding_force", "with_gap")
-    p = red.params_from_scene(ctx.scene)
-    newtonian = p.power_law_index == 1.0
-    # The reduced damper against the accurate reference of the same library (Brenner's exact
-    # series for Newtonian fluids, the power-law closed form otherwise).
-    ref_model = "brenner" if newtonian else "power-law"
-    gaps = np.geomspace(p.gap / 10.0, min(10.0 * p.gap, p.radius), 21)
-    curves: dict[str, Any] = {"x": gaps, "x_label": "gap h (m)"}
-    curves["squeeze damper"] = np.array([red.squeeze_force(red.with_gap(p, h), "damper").force for h in gaps])
-    curves[f"squeeze {ref_model}"] = np.array([red.squeeze_force(red.with_gap(p, h), ref_model).force for h in gaps])
-    values: dict[str, Any] = {
-        "gap_m": p.gap,
-        "radius_m": p.radius,
-        "approach_velocity_m_s": p.velocity,
-        "sliding_velocity_m_s": p.sliding_velocity,
-        "squeeze_force_damper_N": red.squeeze_force(p, "damper").force,
-        f"squeeze_force_{ref_model}_N": red.squeeze_force(p, ref_model).force,
-    }
-    values["damper_rel_error"] = values["squeeze_force_damper_N"] / values[f"squeeze_force_{ref_model}_N"] - 1.0
-    units = {k: ("m" if k.endswith("_m") else "m/s" if k.endswith("_m_s") else "N" if k.endswith("_N") else "1") for k in values}
-    if newtonian and p.sliding_velocity != 0:
-        values["sliding_force_gcb_N"] = red.sliding_force(p, "gcb").force
-        units["sliding_force_gcb_N"] = "N"
-        curves["sliding gcb"] = np.array([red.sliding_force(red.with_gap(p, h), "gcb").force for h in gaps])
+    """Squeeze-force summary of the film (reduced damper vs Reynolds/Brenner) and, with [polishing], polishing."""
+    summ = require_model("tribolmp.models.lubrication.summary", "lubrication_summary")
+    res = summ.lubrication_summary(ctx.scene)
+    gap = np.asarray(res.gap)
+    film = ctx.scene.lubricant.film_thickness
+    i = int(np.argmin(np.abs(gap - film)))  # the summary includes the scene's film thickness
+    curves: dict[str, Any] = {"x": gap, "x_label": "gap h (m)", "damper": res.force_damper, "Reynolds": res.force_reynolds}
+    if "force_brenner" in res:
+        curves["Brenner (exact)"] = res.force_brenner
     np.savez(ctx.workdir / "curves.npz", **curves)
+    values: dict[str, Any] = {
+        "alpha_N_s": res.alpha,
+        "radius_m": res.radius,
+        "approach_velocity_m_s": res.velocity,
+        "power_law_index": res.power_law_index,
+        "film_thickness_m": float(gap[i]),
+        "force_damper_N": float(res.force_damper[i]),
+        "force_reynolds_N": float(res.force_reynolds[i]),
+        "error_damper_vs_reynolds": float(res.error_damper_vs_reynolds[i]),
+    }
+    units = {"alpha_N_s": "N s", "radius_m": "m", "approach_velocity_m_s": "m/s", "power_law_index": "1",
+             "film_thickness_m": "m", "force_damper_N": "N", "force_reynolds_N": "N", "error_damper_vs_reynolds": "1"}
+    if "force_brenner" in res:
+        values["force_brenner_N"] = float(res.force_brenner[i])
+        values["error_damper_vs_stokes"] = float(res.error_damper_vs_stokes[i])
+        units.update(force_brenner_N="N", error_damper_vs_stokes="1")
     files = {"curves": "curves.npz"}
-    method = f"damper vs {ref_model}"
+    method, message = res.method, res.message
     if ctx.scene.polishing is not None:
-        pol = require_model("tribolmp.models.lubrication.polishing", "params_from_scene", "solve")
-        pp = pol.params_from_scene(ctx.scene)
-        res = pol.solve(pp, rng=ctx.rng)
-        pvals = _scalars(res)
-        values["polishing"] = pvals
-        for k, v in pvals.items():
-            if isinstance(v, (int, float)) and not isinstance(v, bool) and k not in ("status", "nit"):
-                values[f"polishing_{k}"] = v
-                if k in res.units:
-                    units[f"polishing_{k}"] = res.units[k]
-        method += f"; polishing {res.method}"
-    return StageOutput(values=values, units=units, files=files, method=method, message=f"lubrication at h = {p.gap:g} m")
+        pol = require_model("tribolmp.models.lubrication.polishing", "params_from_scene", "polish")
+        pres = pol.polish(pol.params_from_scene(ctx.scene), rng=ctx.rng)
+        np.savez(ctx.workdir / "polishing.npz", t=pres.t, sq=pres.sq, sa=pres.sa, removed_volume=pres.removed_volume)
+        np.save(ctx.workdir / "polished.npy", pres.h)
+        files.update(polishing="polishing.npz", polished_surface="polished.npy")
+        for key in ("removal_rate", "preston_rate", "contact_fraction", "mass_balance_error", "load_error", "pixel_size"):
+            values[f"polishing_{key}"] = float(pres[key])
+            units[f"polishing_{key}"] = pres.units.get(key, "1")
+        values.update(polishing_sq_initial_m=float(pres.sq[0]), polishing_sq_final_m=float(pres.sq[-1]))
+        units.update(polishing_sq_initial_m="m", polishing_sq_final_m="m")
+        method += f"; polishing {pres.method}"
+        message += f"; polishing: {pres.message}"
+    return StageOutput(values=values, units=units, files=files, method=method, message=message, nit=int(res.nit))
+
+
+# ------------------------------------------------------------------ contact
+
+
+@_stage("contact")
+def contact(ctx: StageContext) -> StageOutput:
+    """Normal stiffness against load: rough surface (evolved, given or generated) or axisymmetric profile."""
+    cs = require_model("tribolmp.models.contact.solve", "params_from_scene", "solve", "solve_rough", "rough_surface", "load_surface")
+    scene, opts = ctx.scene, ctx.plan.options
+    method = opts["method"]
+    if scene.geometry.profile != "rough":
+        return _contact_axisymmetric(ctx, cs, method)
+    import dataclasses
+
+    params = cs.rough_params_from_scene(scene)
+    surf_rng, ens_rng = ctx.rng.spawn(2)
+    mesh_note = ""
+    if "topography" in ctx.upstream:
+        h, dx = cs.load_surface(ctx.upstream["topography"].file("surface"))
+        source = "evolved surface (topography stage)"
+        if opts.get("mesh") is not None:
+            mesh_note = f"mesh fixed by the evolved surface ({h.shape[0]} points), not the table's {opts['mesh']}"
+    else:
+        if opts.get("mesh") is not None and not params.surface_file and method == "bem":
+            # The measured table gives the BEM grid for this tolerance: same physical size L, new pixel.
+            L = params.grid_points * params.pixel_size
+            params = dataclasses.replace(params, grid_points=int(opts["mesh"]), pixel_size=L / int(opts["mesh"]))
+            mesh_note = f"BEM grid {opts['mesh']} from the speed-error table (L = {L:g} m)"
+        h, dx = cs.rough_surface(params, surf_rng)
+        source = f"height map {params.surface_file}" if params.surface_file else "random surface from [roughness]"
+    res = cs.solve_rough(
+        h, dx, params.modulus, params.pressures, method=method, periodic=params.periodic,
+        realizations=params.realizations, rng=ens_rng,
+    )
+    arrays = {k: np.asarray(res[k]) for k in ("pressure", "force", "stiffness", "approach", "stiffness_q10", "stiffness_q90", "area_fraction") if k in res}
+    np.savez(ctx.workdir / "stiffness.npz", q10=arrays.get("stiffness_q10", arrays["stiffness"]),
+             q90=arrays.get("stiffness_q90", arrays["stiffness"]), **arrays)
+    values: dict[str, Any] = {k: v.tolist() for k, v in arrays.items()}
+    values.update(surface=source, grid=int(h.shape[0]), pixel_size_m=float(dx), surface_rms_m=float(np.std(h)),
+                  E_star_Pa=float(params.modulus), realizations=int(params.realizations) if method == "mdr" else None,
+                  periodic=bool(params.periodic) if method == "bem" else None)
+    if mesh_note:
+        values["mesh_note"] = mesh_note
+    if opts.get("expected_error") is not None:
+        values["expected_rel_error"] = opts["expected_error"]
+    units = {"pressure": "Pa", "force": "N", "stiffness": "N/m", "approach": "m", "stiffness_q10": "N/m",
+             "stiffness_q90": "N/m", "area_fraction": "1", "pixel_size_m": "m", "surface_rms_m": "m", "E_star_Pa": "Pa",
+             "expected_rel_error": "1"}
+    return StageOutput(values=values, units=units, files={"stiffness": "stiffness.npz"}, method=method,
+                       message=f"{method} on {source}, {h.shape[0]}x{h.shape[1]} grid", nit=int(res.get("nit", 0) or 0))
+
+
+def _contact_axisymmetric(ctx: StageContext, cs: ModuleType, method: str) -> StageOutput:
+    """Axisymmetric indenter: force, contact radius and (MDR) stiffness at fractions of the scene's load."""
+    import dataclasses
+
+    base = cs.params_from_scene(ctx.scene)
+    if base.normal_force is None:
+        raise ValueError("[load].normal_force must be > 0 for a stiffness-vs-load curve of an axisymmetric contact")
+    loads = base.normal_force * np.geomspace(0.01, 1.0, 9)
+    rows = [cs.solve(dataclasses.replace(base, normal_force=float(F)), method=method) for F in loads]
+    arrays = {"force": np.array([r.force for r in rows]), "contact_radius": np.array([r.contact_radius for r in rows]),
+              "indentation": np.array([r.indentation for r in rows])}
+    if all("stiffness" in r for r in rows):
+        arrays["stiffness"] = np.array([r.stiffness for r in rows])
+    # The figure's x axis is the nominal (mean contact) pressure F / (pi a^2).
+    arrays["pressure"] = arrays["force"] / (np.pi * arrays["contact_radius"] ** 2)
+    np.savez(ctx.workdir / "stiffness.npz", **arrays)
+    values: dict[str, Any] = {k: v.tolist() for k, v in arrays.items()}
+    values.update(profile=ctx.scene.geometry.profile, E_star_Pa=float(base.modulus), springs=int(rows[-1].get("springs", 0)) or None)
+    units = {"force": "N", "contact_radius": "m", "indentation": "m", "stiffness": "N/m", "pressure": "Pa", "E_star_Pa": "Pa"}
+    files = {"stiffness": "stiffness.npz"} if "stiffness" in arrays else {"contact_curve": "stiffness.npz"}
+    return StageOutput(values=values, units=units, files=files, method=method,
+                       message=f"{method} {ctx.scene.geometry.profile}, {len(loads)} loads up to {base.normal_force:g} N")
+
+
+# --------------------------------------------------------------- macroscale
+
+
+def tangential_stiffness_from_contact(result: CachedStage, scene: Scene) -> tuple[float, str]:
+    """Tangential stiffness (N/m) of the scene's apparent contact from the contact stage's table.
+
+    Hand-off conversion only, no new physics: the contact stage gives the normal
+    stiffness ``k_n(p)`` of a patch of area ``A_patch`` (``force / pressure``) at
+    nominal pressures ``p``.  The interface stiffness per unit area ``k_n / A``
+    is intensive, so it is interpolated (log-log) at the macroscale pressure
+    ``p = N / A_apparent`` and multiplied by ``A_apparent``; the MDR rule
+    ``dk_x / dk_z = G* / E*`` of sticking springs (PHYSICS.md section 2) turns it
+    into the tangential stiffness.  Pressures outside the computed range are refused.
+    """
+    v = result.values
+    p = np.asarray(v["pressure"], float)
+    k = np.asarray(v["stiffness"], float)
+    area_patch = np.asarray(v["force"], float) / p
+    geo = scene.geometry
+    area = geo.apparent_length * geo.apparent_width
+    p_macro = scene.load.normal_force / area
+    if not (p.min() <= p_macro <= p.max()):
+        from ..errors import ParameterError
+
+        raise ParameterError(
+            "[load].normal_force",
+            f"a nominal pressure N/(apparent_length*apparent_width) within [load].pressures [{p.min():g}, {p.max():g}] Pa",
+            f"{p_macro:g} Pa",
+        )
+    order = np.argsort(p)
+    k_per_area = np.exp(np.interp(np.log(p_macro), np.log(p[order]), np.log((k / area_patch)[order])))
+    k_t = float(k_per_area * area * scene.effective_shear_modulus / scene.effective_modulus)
+    return k_t, f"contact stage at p = {p_macro:g} Pa over {area:g} m^2, times G*/E*"
+
+
+@_stage("macroscale")
+def macroscale(ctx: StageContext) -> StageOutput:
+    """Stick-slip of the rigid body pulled through a spring, on the contact, with the chain's mu."""
+    macro = require_model("tribolmp.models.macro", "stick_slip_from_scene")
+    mu, mu_src = _friction_coefficient(ctx)
+    kw: dict[str, Any] = {"mu": mu}
+    if ctx.plan.options.get("contact_law") == "stiffness" and "contact" in ctx.upstream:
+        kc, kc_src = tangential_stiffness_from_contact(ctx.upstream["contact"], ctx.scene)
+        kw["contact_stiffness"] = kc
+    else:
+        kw["contact_law"] = "mdr"
+        kc, kc_src = None, "MDR springs of the [geometry] profile (load dependent)"
+    res = macro.stick_slip_from_scene(ctx.scene, **kw)
+    t = np.asarray(res.t)
+    np.savez(ctx.workdir / "trajectory.npz", t=t, x=res.x, velocity=res.v, friction=res.drive_force, phase=res.phase)
+    slips = [e for e in res.events if str(e.get("to_phase", "")).startswith("slip")]
+    values = {
+        "mu": mu,
+        "mu_source": mu_src,
+        "contact_stiffness_N_m": kc,
+        "contact_stiffness_source": kc_src,
+        "n_transitions": int(res.n_transitions),
+        "n_slip_events": len(slips),
+        "max_drive_force_N": float(np.max(res.drive_force)),
+        "mean_drive_force_N": float(np.mean(res.drive_force)),
+        "max_velocity_m_s": float(np.max(res.v)),
+        "duration_s": float(t[-1]) if t.size else 0.0,
+    }
+    units = {"mu": "1", "contact_stiffness_N_m": "N/m", "max_drive_force_N": "N", "mean_drive_force_N": "N",
+             "max_velocity_m_s": "m/s", "duration_s": "s"}
+    return StageOutput(values=values, units=units, files={"trajectory": "trajectory.npz"}, method=str(res.method),
+                       message=str(res.message), nit=int(res.nit))
+
+
+# -------------------------------------------------------- tribospectroscopy
+
+
+@_stage("tribospectroscopy")
+def tribospectroscopy(ctx: StageContext) -> StageOutput:
+    """F^2(a) of the oscillating two-contact probe with the chain's mu, and the fitted length."""
+    ts = require_model("tribolmp.models.tribospectroscopy", "params_from_scene", "solve", "fit_length", "MeasuredCurve")
+    mu, mu_src = _friction_coefficient(ctx)
+    params = ts.params_from_scene(ctx.scene, mu=mu)
+    res = ts.solve(params)
+    a, f2 = np.asarray(res.amplitude_m), np.asarray(res.force_sq_N2)
+    # Fitting the model's own curve must return its input length: a check of the forward/inverse pair.
+    fit = ts.fit_length(ts.MeasuredCurve(amplitude=a, value=f2, quantity="force_sq", source="tribospectroscopy stage"),
+                        model=params.model)
+    np.savez(ctx.workdir / "f2.npz", amplitude=a, f2=f2)
+    values = {
+        "mu": mu,
+        "mu_source": mu_src,
+        "model": res.model,
+        "amplitude_convention": res.amplitude_convention,
+        "length_m": float(res.length_m),
+        "fitted_length_m": float(fit.get("length_m", np.nan)),
+        "force_at_zero_amplitude_N": float(np.sqrt(f2[0])),
+        "amplitude_m": a.tolist(),
+        "force_sq_N2": f2.tolist(),
+    }
+    for k in ("contact_stiffness_N_m", "shakedown_limit_m", "force0_N"):
+        if k in res:
+            values[k] = float(res[k])
+    units = {**{k: u for k, u in res.units.items() if k in values}, "fitted_length_m": "m", "force_at_zero_amplitude_N": "N", "mu": "1"}
+    return StageOutput(values=values, units=units, files={"f2": "f2.npz"}, method=str(res.method), message=str(res.message))

@@ -14,6 +14,12 @@ def configure(parser) -> None:
     parser.add_argument("--out", default="tribolmp-bench", help="output folder for bench.md and bench.csv")
     parser.add_argument("--timeout", type=float, default=900.0, help="per-benchmark time limit in s (default 900)")
     parser.add_argument("--json", action="store_true", help="print the gathered tables as JSON")
+    parser.add_argument(
+        "--contact-table",
+        metavar="PATH",
+        default=None,
+        help="also write the planner's contact speed-error table (JSON) built from the contact benchmark's CSVs",
+    )
 
 
 def run(args) -> int:
@@ -29,6 +35,17 @@ def run(args) -> int:
     )
     if res["benchmarks_dir"] is None:
         raise SetupError("--benchmarks: expected a folder with benchmarks/*.py, got none (run from the repository root)")
+    if args.contact_table:
+        from pathlib import Path
+
+        from ..chain.bench import build_contact_table
+        from ..chain.cache import atomic_write_json
+
+        table = build_contact_table(Path(res["benchmarks_dir"]) / "results")
+        if not table["rows"]:
+            raise SetupError("--contact-table: expected contact_rough_mdr_vs_bem*.csv in benchmarks/results, got none")
+        atomic_write_json(args.contact_table, table)
+        res["contact_table"] = args.contact_table
     if args.json:
         emit_json(res)
     else:

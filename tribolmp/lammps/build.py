@@ -269,7 +269,7 @@ def build_system(
 
 
 def build_block(*, dim: int, d: float, n: int) -> MCAGeometry:
-    """A single bonded block (mol 2, type 1) for uniaxial tests, periodic along x only.
+    """A single bonded, fully periodic block (mol 2, type 1) for uniaxial tests.
 
     Parameters
     ----------
@@ -281,24 +281,26 @@ def build_block(*, dim: int, d: float, n: int) -> MCAGeometry:
         Lattice repeats per side (>= 4).
     """
     if dim == 2:
+        n += n % 2  # whole hexagonal cells along y
         atoms, dy = _hex_block(n, n, d)
-        lx, zlim = n * d, (-0.5 * d, 0.5 * d)
+        lx, ly, zlim = n * d, n * dy, (-0.5 * d, 0.5 * d)
     else:
         atoms, dy = _fcc_block(n, n, n, d)
-        lx, zlim = n * math.sqrt(2.0) * d, (-d, n * math.sqrt(2.0) * d)
+        lx = ly = n * math.sqrt(2.0) * d
+        zlim = (0.0, lx)
     pos = atoms.positions
     mol = np.full(len(atoms), MOL_LOWER)
     atoms.set_array("mol_id", mol)
     atoms.set_array("lammps_type", np.full(len(atoms), TYPE_BODY))
-    box = np.array([[0.0, lx], [-d, pos[:, 1].max() + d], zlim])
+    box = np.array([[0.0, lx], [0.0, ly], zlim])
     atoms.cell = np.diag(box[:, 1] - box[:, 0])
-    atoms.pbc = [True, False, dim == 2]
-    bonds = _neighbour_bonds(pos, mol, box, d, dim, periodic_z=False)
+    atoms.pbc = True
+    bonds = _neighbour_bonds(pos, mol, box, d, dim, periodic_y=True)
     return MCAGeometry(atoms=atoms, bonds=bonds, dim=dim, d=d, box=box, interface_y=float("nan"))
 
 
 def _neighbour_bonds(
-    pos: np.ndarray, mol: np.ndarray, box: np.ndarray, d: float, dim: int, *, periodic_z: bool = True
+    pos: np.ndarray, mol: np.ndarray, box: np.ndarray, d: float, dim: int, *, periodic_y: bool = False
 ) -> np.ndarray:
     """Bonds between nearest neighbours (distance < 1.05 d) of the same body, plus attachments.
 
@@ -309,7 +311,7 @@ def _neighbour_bonds(
     from scipy.spatial import cKDTree
 
     lengths = box[:, 1] - box[:, 0]
-    periodic = [True, False, dim == 3 and periodic_z]
+    periodic = [True, periodic_y, dim == 3]
     # cKDTree needs positions in [0, L) on periodic axes and a huge box on the others
     boxsize = np.array([lengths[i] if periodic[i] else 1e12 for i in range(3)])
     shifted = pos - np.where(periodic, box[:, 0], 0.0)

@@ -250,7 +250,7 @@ def deck_variables(params: MCAParams, *, data: str | Path, out: str | Path, seed
 # ---------------------------------------------------------------------- preparation
 
 
-def _prepare(params: MCAParams, out: Path, seed: int) -> dict[str, Any]:
+def _prepare(params: MCAParams, out: Path, seed: int, overrides: dict[str, Any]) -> dict[str, Any]:
     """Build the system, write ``system.data`` and ``meta.json``; return the deck variables."""
     from .build import MOL_LOWER, MOL_UPPER, build_system, write_bpm_data
 
@@ -282,6 +282,10 @@ def _prepare(params: MCAParams, out: Path, seed: int) -> dict[str, Any]:
     lz = geom.box[2, 1] - geom.box[2, 0]
     info = {"lx_nm": lx, "lz_nm": lz, "sink_lo_nm": sink_lo, "sink_hi_nm": sink_hi}
     variables = deck_variables(params, data=data, out=out, seed=lmp_seed, geom_info=info)
+    unknown = sorted(set(overrides) - set(variables))
+    if unknown:
+        raise ParameterError("overrides", f"names of deck variables {sorted(variables)}", unknown)
+    variables.update(overrides)
     dt_s = float(variables["dt"]) * 1e-9
     every = int(variables["dump_every"])
     meta = {
@@ -322,6 +326,7 @@ def _prepare(params: MCAParams, out: Path, seed: int) -> dict[str, Any]:
         "mapping": {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in c.as_dict().items()},
         "deck": str(deck_path("mca_friction")),
         "deck_variables": {k: str(v) for k, v in variables.items()},
+        "overrides": {k: str(v) for k, v in overrides.items()},
     }
     (out / "meta.json").write_text(json.dumps(meta, indent=1))
     return variables
@@ -367,16 +372,19 @@ def _truncate_outputs(out: Path, step: int, dt_s: float) -> None:
 
 _CAUSES = (
     (re.compile(r"lost atoms", re.I), "lost atoms (an automaton left the box)"),
-    (re.compile(r"bond atoms? missing|atom missing in bpm bond|missing.*bond", re.I),
+    (re.compile(r"bond atoms? .*missing|atom missing in bpm bond", re.I),
      "a link stretched past the communication cutoff (bond atoms missing)"),
-    (re.compile(r"non-numeric|nan|inf", re.I), "non-finite positions or forces (NaN)"),
+    (re.compile(r"non-numeric atom|out of range atoms|\bnan\b.*(force|coord|position)", re.I),
+     "non-finite positions or forces (NaN)"),
 )
 
 
 def _classify(exc: LammpsError, step: int | None) -> RunError:
     for pattern, cause in _CAUSES:
         if pattern.search(exc.message):
-            return BlowUpError(f"MCA run failed at step {step if step is not None else '?'}: {cause}; LAMMPS: {exc.message}")
+            return BlowUpError(
+                f"MCA run failed at step {step if step is not None else '?'}: {cause}; last restart kept; LAMMPS: {exc.message}"
+            )
     return exc
 
 
@@ -399,10 +407,7 @@ def _run_lammps(variables: dict[str, Any], out: Path, *, resume: bool) -> dict[s
         is_root = lmp.rank == 0
         if resume and start_step > 0 and is_root:
             _truncate_outputs(out, start_step, float(variables["dt"]) * 1e-9)
-        try:
-            lmp.file(deck_path("mca_friction"))
-        except LammpsError as exc:
-            raise _classify(exc, exc.step) from None
+        lmp.file(deck_path("mca_friction"))  # setup errors are not blow-ups: LammpsError as is
         natoms = lmp.natoms()
         step = int(lmp.thermo("step"))
         t_run = time.perf_counter()
@@ -449,7 +454,15 @@ def _mpi_command(np_: int) -> list[str]:
     return [str(mpiexec), "-n", str(np_)]
 
 
-def run_mca(params: MCAParams, out_dir: str | os.PathLike, *, seed: int, resume: bool = False, np: int = 1) -> Result:
+def run_mca(
+    params: MCAParams,
+    out_dir: str | os.PathLike,
+    *,
+    seed: int,
+    resume: bool = False,
+    np: int = 1,
+    overrides: dict[str, Any] | None = None,
+) -> Result:
     """Run the MCA friction experiment and write the output-directory contract.
 
     Parameters
@@ -466,6 +479,10 @@ def run_mca(params: MCAParams, out_dir: str | os.PathLike, *, seed: int, resume:
         file the run starts from the beginning.
     np : int
         MPI ranks; ``np > 1`` runs ``mpiexec -n np python -m tribolmp.lammps.mca``.
+    overrides : dict, optional
+        Expert use (experiments, failure tests): deck variables (LAMMPS nano
+        units) that replace the mapped values after validation.  Recorded in
+        ``meta.json``.
 
     Returns
     -------
@@ -487,7 +504,7 @@ def run_mca(params: MCAParams, out_dir: str | os.PathLike, *, seed: int, resume:
         variables = json.loads(meta_path.read_text())["deck_variables"]
     else:
         resume = False
-        variables = _prepare(params, out, seed)
+        variables = _prepare(params, out, seed, overrides or {})
     if np_ == 1:
         counters = _run_lammps(variables, out, resume=resume)
     else:

@@ -205,17 +205,24 @@ class Topography(Section):
 
     _name = "topography"
     d0: float = param(1e-12, unit="m^2/s", lo=0.0, hi=1e3, doc="Surface diffusion coefficient D0.")
-    dx_noise: float = param(2.5e-20, unit="m^3/s", lo=0.0, hi=1e3, doc="Conserved-noise intensity Dx (1D: m^3/s, 2D: m^4/s).")
-    dz: float = param(5.6e-20, unit="m^3/s", lo=0.0, hi=1e3, doc="Deposition/detachment noise intensity Dz (1D: m^3/s, 2D: m^4/s).")
-    mu: float = param(10.0, unit="1/s", lo=0.0, hi=1e9, doc="Wear rate constant mu.")
-    l: float = param(50e-9, unit="m", lo=0.0, lo_open=True, hi=1.0, doc="Step length l of the stochastic flux.")
+    # Defaults (used when no rates are given) suit the default 2D grid of 256 x 2.5 nm: k1 = 3.0e7,
+    # k2 = 3.0e8 1/m, high plateau l^4 (one automaton), Rq ~ 3 nm.
+    dx_noise: float = param(6.25e-30, unit="m^4/s", lo=0.0, hi=1e3, doc="Conserved-noise intensity Dx (2D: m^4/s, 1D: m^3/s).")
+    dz: float = param(3.5e-30, unit="m^4/s", lo=0.0, hi=1e3, doc="Deposition/detachment noise intensity Dz (2D: m^4/s, 1D: m^3/s).")
+    mu: float = param(900.0, unit="1/s", lo=0.0, hi=1e9, doc="Wear rate constant mu.")
+    l: float = param(2.5e-9, unit="m", lo=0.0, lo_open=True, hi=1.0, doc="Step length l of the stochastic flux.")
     correlation_length: float = param(0.0, unit="m", lo=0.0, hi=1.0, doc="Noise correlation length l_c (0 = delta).")
     dim: int = param(1, choices=(1, 2), doc="1D profile or 2D surface.")
     grid_points: int = param(1024, lo=4, hi=1 << 22, doc="Grid points per side.")
     pixel_size: float = param(10e-9, unit="m", lo=0.0, lo_open=True, hi=1.0, doc="Grid spacing.")
-    duration: float = param(1.0, unit="s", lo=0.0, lo_open=True, hi=1e12, doc="Evolution time.")
+    duration: float = param(1e4, unit="s", lo=0.0, lo_open=True, hi=1e12, doc="Evolution time.")
     steps: int = param(200, lo=1, hi=10**9, doc="Number of exact-OU steps.")
     scheme: str = param("exact", choices=("exact", "euler"), doc="Integrator.")
+
+    def _check(self) -> None:
+        # The real-FFT solver needs an even grid (real k = 0 and Nyquist modes).
+        if self.grid_points % 2:
+            self._fail("grid_points", "an even number of grid points >= 4", self.grid_points)
 
 
 @dataclass(frozen=True)

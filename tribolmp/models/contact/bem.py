@@ -48,7 +48,7 @@ def _workers() -> int:
 def love_influence(x, y, a, b, E_star):
     """Surface displacement (m) at (x, y) under unit pressure (1 Pa) on ``|x|<a, |y|<b``.
 
-    Closed form of Love (1929) written with ``F(x, y) = x asinh(y/x) + y asinh(x/y)``
+    Closed form of Love (1929) written with ``F(x, y) = x asinh(y/|x|) + y asinh(x/|y|)``
     (the double antiderivative of ``1/sqrt(x^2+y^2)``), which is free of the
     cancellations of the textbook logarithms:
     ``u = [F(x+a, y+b) - F(x+a, y-b) - F(x-a, y+b) + F(x-a, y-b)] / (pi E*)``.
@@ -56,8 +56,8 @@ def love_influence(x, y, a, b, E_star):
 
     def F(X, Y):
         with np.errstate(divide="ignore", invalid="ignore"):
-            t1 = np.where(X != 0, X * np.arcsinh(Y / np.where(X != 0, X, 1.0)), 0.0)
-            t2 = np.where(Y != 0, Y * np.arcsinh(X / np.where(Y != 0, Y, 1.0)), 0.0)
+            t1 = np.where(X != 0, X * np.arcsinh(Y / np.where(X != 0, np.abs(X), 1.0)), 0.0)
+            t2 = np.where(Y != 0, Y * np.arcsinh(X / np.where(Y != 0, np.abs(Y), 1.0)), 0.0)
         return t1 + t2
 
     return (F(x + a, y + b) - F(x + a, y - b) - F(x - a, y + b) + F(x - a, y - b)) / (math.pi * E_star)
@@ -92,6 +92,9 @@ class HalfSpace:
                 _KERNELS.pop(next(iter(_KERNELS)))
             _KERNELS[key] = kernel
         self.kernel = kernel
+        # Displacement of a pixel under its own unit pressure (m/Pa): the scale of a
+        # pressure correction that closes a local overlap.
+        self.self_compliance = float(love_influence(0.0, 0.0, self.dx / 2, self.dx / 2, self.E_star))
 
     def _build(self) -> np.ndarray:
         from scipy import fft
@@ -219,10 +222,11 @@ def solve_bem(
         r = op(t)
         r -= r[S].sum() / nS
         rt = float(np.vdot(np.where(S, r, 0.0), t))
-        if rt <= 0:  # exact solution on the current set (t == 0)
-            tau = 0.0
-        else:
-            tau = float(np.vdot(gS, t)) / rt
+        tau = float(np.vdot(gS, t)) / rt if rt > 0 else 0.0
+        if tau <= 0.0:
+            # The current contact set is solved exactly (t == 0, e.g. a warm start
+            # scaled to a new load): only overlaps remain, closed with the local compliance.
+            tau = 1.0 / op.self_compliance
         p_old = p
         p = p - tau * t
         np.maximum(p, 0.0, out=p)
@@ -234,7 +238,7 @@ def solve_bem(
             delta = 1.0
         p *= total / p.sum()
         eps = float(np.abs(p - p_old).sum()) / total
-        if eps < tol:
+        if eps < tol and delta:  # converged and no overlap left
             converged = True
             break
     if not converged:

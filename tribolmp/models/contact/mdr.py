@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...errors import ConvergenceError, NoContactError, ParameterError
+from ...errors import NoContactError, ParameterError
 from ..base import check_int, check_positive, check_range
 
 __all__ = [
@@ -217,46 +217,43 @@ def spring_widths(f: np.ndarray, dx: float) -> np.ndarray:
     The exact integral of the positive part of the piecewise-linear line
     through ``f`` equals ``sum(widths * f)``: a cell with both ends in contact
     gives ``dx/2`` to each end; a cell cut by the contact edge gives its
-    in-contact end the distance ``t`` to the sub-grid root halved (the area of
-    the triangle ``f_i t / 2``); an infinite neighbour (a punch wall) puts the
-    edge at the cell middle.  The outermost springs also own the half cell
-    beyond the row, so that a closed row has the length ``n dx``.
+    in-contact end half the distance ``t`` to the sub-grid root (the triangle
+    ``f_i t / 2``); an infinite neighbour (a punch wall) puts the edge at the
+    cell middle.  The outermost springs also own the half cell beyond the
+    row, so that a closed row has the length ``n dx``.  Works along the last
+    axis of ``f`` (a stack of profiles).
     """
-    f = np.asarray(f, dtype=float)
-    pos = f > 0
-    w = np.where(pos, 0.5 * dx, 0.0)  # the outer half cells (end springs) and
-    # every spring's share of its two neighbouring cells, added below
-    w[1:-1] = 0.0
-    fl, fr = f[:-1], f[1:]
-    pl, pr = pos[:-1], pos[1:]
-    both = pl & pr
-    half = np.where(both, 0.5 * dx, 0.0)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        # left node in contact, right not: root at t = f_l dx / (f_l - f_r)
-        tl = np.where(np.isfinite(fr), fl / (fl - fr) * dx, dx)
-        tr = np.where(np.isfinite(fl), fr / (fr - fl) * dx, dx)
-    left_only = pl & ~pr
-    right_only = pr & ~pl
-    wl = half + np.where(left_only, 0.5 * tl, 0.0)
-    wr = half + np.where(right_only, 0.5 * tr, 0.0)
-    w[:-1] += np.where(pl, wl, 0.0)
-    w[1:] += np.where(pr, wr, 0.0)
-    return w
+    return _edge_weights(f, dx, lengths=False)
 
 
 def _contact_lengths(f: np.ndarray, dx: float) -> np.ndarray:
     """Length (m) of the contact owned by each spring (derivative of the force / E*)."""
+    return _edge_weights(f, dx, lengths=True)
+
+
+def _edge_weights(f: np.ndarray, dx: float, lengths: bool) -> np.ndarray:
+    """Spring widths (``lengths=False``) or contact lengths owned by each spring (True)."""
+    f = np.asarray(f, dtype=float)
     pos = f > 0
-    ln = np.where(pos, 0.5 * dx, 0.0)
-    ln[1:-1] = 0.0
-    fl, fr = f[:-1], f[1:]
-    pl, pr = pos[:-1], pos[1:]
+    w = np.zeros_like(f)
+    w[..., 0] = np.where(pos[..., 0], 0.5 * dx, 0.0)
+    w[..., -1] = np.where(pos[..., -1], 0.5 * dx, 0.0)
+    fl, fr = f[..., :-1], f[..., 1:]
+    pl, pr = pos[..., :-1], pos[..., 1:]
+    both = pl & pr
     with np.errstate(invalid="ignore", divide="ignore"):
+        # in-contact end -> sub-grid root of the linear cell at t = f_l dx / (f_l - f_r);
+        # an infinite neighbour (punch wall) puts the edge at the cell middle
         tl = np.where(np.isfinite(fr), fl / (fl - fr) * dx, 0.5 * dx)
         tr = np.where(np.isfinite(fl), fr / (fr - fl) * dx, 0.5 * dx)
-    ln[:-1] += np.where(pl & pr, 0.5 * dx, np.where(pl, tl, 0.0))
-    ln[1:] += np.where(pl & pr, 0.5 * dx, np.where(pr, tr, 0.0))
-    return ln
+    if lengths:  # d(area)/dd of the triangle f t / 2 is t
+        el, er = tl, tr
+    else:  # the triangle f t / 2 is carried by a width t / 2; a wall: rectangle f dx / 2
+        el = np.where(np.isfinite(fr), 0.5 * tl, 0.5 * dx)
+        er = np.where(np.isfinite(fl), 0.5 * tr, 0.5 * dx)
+    w[..., :-1] += np.where(both, 0.5 * dx, np.where(pl, el, 0.0))
+    w[..., 1:] += np.where(both, 0.5 * dx, np.where(pr, er, 0.0))
+    return w
 
 
 def normal_force(x, g, d, E_star) -> float:
@@ -404,19 +401,29 @@ class AxisymmetricMDR:
         a = np.linspace(a_max / n, a_max, n)
         return _JKRCurve(a=a, d=self.jkr_indentation(a), force=self.jkr_force(a))
 
-    def _minimise(self, fun, a_hi):
-        """Minimum of a smooth function of a on (0, a_hi] by grid search plus Brent."""
-        from scipy.optimize import minimize_scalar
+    def _jkr_slopes(self, a):
+        """``dd/da`` (dimensionless) and ``dF/da`` (N/m) along the JKR curve."""
+        a = np.asarray(a, dtype=float)
+        edge = self._edge_gap(a)
+        dd = self._gp(a) - edge / (2.0 * a)
+        return dd, 2.0 * self.E_star * (dd * a - edge)
 
-        a = np.geomspace(a_hi * 1e-6, a_hi, 400)
-        vals = fun(a)
-        i = int(np.argmin(vals))
-        if i == 0 or i == a.size - 1:
+    def _stationary(self, which: int) -> float:
+        """Contact radius (m) where ``d(a)`` (which=0) or ``F(a)`` (which=1) is minimal.
+
+        Found as the root of the analytic slope (spline derivative), so the
+        fixed-grips force is not limited by the sqrt(eps) flatness of a minimum.
+        """
+        from scipy.optimize import brentq
+
+        a_hi = self.x_edge
+        a = np.geomspace(a_hi * 1e-8, a_hi, 600)
+        s = self._jkr_slopes(a)[which]
+        up = np.nonzero((s[:-1] < 0) & (s[1:] >= 0))[0]
+        if up.size == 0:
             raise NoContactError("adhesive minimum not inside the spring row; increase x_max")
-        res = minimize_scalar(lambda s: float(fun(s)), bracket=(a[i - 1], a[i], a[i + 1]), tol=1e-12)
-        if not res.success:  # pragma: no cover - brent on a bracketed smooth minimum
-            raise ConvergenceError(f"pull-off search failed: {res.message}")
-        return float(res.x)
+        i = int(up[0])
+        return float(brentq(lambda x: float(self._jkr_slopes(x)[which]), a[i], a[i + 1], xtol=1e-15 * a[i + 1], rtol=1e-15))
 
     def pull_off(self, control: str = "force") -> dict:
         """Pull-off (N, negative = tensile) under ``"force"`` or ``"displacement"`` control.
@@ -433,8 +440,7 @@ class AxisymmetricMDR:
             raise ParameterError("work_of_adhesion", "a value > 0 for a pull-off force", self.work_of_adhesion)
         if control not in ("force", "displacement"):
             raise ParameterError("control", "one of ['force', 'displacement']", control)
-        fun = self.jkr_force if control == "force" else self.jkr_indentation
-        a = self._minimise(fun, self.x_edge)
+        a = self._stationary(1 if control == "force" else 0)
         return {"force": float(self.jkr_force(a)), "indentation": float(self.jkr_indentation(a)), "contact_radius": a}
 
     def jkr_at_indentation(self, d: float) -> tuple[float, float]:
@@ -445,7 +451,7 @@ class AxisymmetricMDR:
         """
         from scipy.optimize import brentq
 
-        a_c = self._minimise(self.jkr_indentation, self.x_edge)
+        a_c = self._stationary(0)
         d_c = float(self.jkr_indentation(a_c))
         if d < d_c:
             raise NoContactError(f"indentation {d:.6g} m is below the pull-off indentation {d_c:.6g} m")
@@ -514,9 +520,12 @@ class TangentialMDR:
     """Spring row with per-spring Coulomb friction and memory (Cattaneo-Mindlin).
 
     Each spring i in contact carries a normal force ``E* w_i f_i`` and a
-    tangential force ``G* w_i s_i`` (``f_i = d - g_i`` its compression,
-    ``w_i`` its width from :func:`spring_widths`, ``s_i`` its tangential
-    elongation).  Coulomb's law per spring, ``|G* s_i| <= mu E* f_i``, is
+    tangential force ``G* l_i s_i`` (``f_i = d - g_i`` its compression,
+    ``w_i`` its width from :func:`spring_widths`, ``l_i`` the contact length
+    it owns, equal to ``w_i`` except in the cells cut by the contact edge,
+    so that the sticking stiffness is ``G*`` times the contact length and
+    full sliding gives exactly ``mu F_N``; ``s_i`` its tangential
+    elongation).  Coulomb's law per spring, ``|G* l_i s_i| <= mu E* w_i f_i``, is
     enforced after every step: springs that would exceed it slip and keep the
     limiting elongation.  Springs entering contact start unstretched; springs
     leaving contact forget their state.  Any quasi-static history (loading,
@@ -566,15 +575,18 @@ class TangentialMDR:
         f = float(d) - self.g
         contact = f > 0
         du = float(u) - self.u
+        w = spring_widths(f, self.dx)  # carries the normal force
+        ln = _contact_lengths(f, self.dx)  # carries the tangential stiffness
         kept = contact & self.in_contact
         s = np.where(kept, self.s + du, 0.0)
-        limit = np.where(contact, self.mu * self.E_star / self.G_star * f, 0.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            # Coulomb: |G* l s| <= mu E* w f; l = w except in the cells cut by the edge
+            limit = np.where(contact, self.mu * self.E_star * w * f / (self.G_star * ln), 0.0)
         slip = np.abs(s) >= limit
         s = np.where(slip, np.sign(s) * limit, s)
-        w = spring_widths(f, self.dx)
         self.s, self.in_contact, self.u, self.d = s, contact, float(u), float(d)
         self.stick = contact & ~slip
-        self.stiffness_x = self.G_star * float(np.sum(w[self.stick]))
+        self.stiffness_x = self.G_star * float(np.sum(ln[self.stick]))
         self.force_n = self.E_star * float(np.dot(w, np.where(contact, f, 0.0)))
-        self.force_x = self.G_star * float(np.dot(w, s))
+        self.force_x = self.G_star * float(np.dot(ln, s))
         return self.force_n, self.force_x

@@ -191,15 +191,13 @@ def mindlin_unloading_force(u, u_amp, d, R, mu, E_star, G_star):
 def mindlin_dissipation(u_amp, d, R, mu, E_star, G_star):
     """Energy (J) dissipated per cycle of a displacement oscillation ``+-u_amp`` (m).
 
-    Loop area ``W = 4 u* F* - 8 int_0^{u*} F_virgin du``, with
-    ``int_0^{u*} F = mu F_N [u* - (2 u_s/5)(1 - (1 - u*/u_s)^(5/2))]``.
+    Masing's rule makes the loop area ``W = 8 int_0^{u*} F du - 4 u* F(u*)``
+    (virgin curve F, saturating at ``mu F_N`` beyond ``u_s``), with
+    ``int_0^{u} F = mu F_N [u - (2 u_s/5)(1 - (1 - u/u_s)^(5/2))]`` for ``u <= u_s``.
     """
     us = mindlin_slip_displacement(d, mu, E_star, G_star)
     FN = float(hertz_force(d, R, E_star))
-    ua = min(float(u_amp), us)
-    F_amp = float(mindlin_force(ua, d, R, mu, E_star, G_star))
-    integral = mu * FN * (ua - 0.4 * us * (1.0 - (1.0 - ua / us) ** 2.5))
-    W = 4.0 * ua * F_amp - 8.0 * integral
-    if u_amp > us:  # gross sliding beyond u_s adds a rectangle 4 mu F_N (u_amp - u_s)
-        W += 4.0 * mu * FN * (float(u_amp) - us)
-    return W
+    ua = float(u_amp)
+    uc = min(ua, us)
+    integral = mu * FN * (uc - 0.4 * us * (1.0 - (1.0 - uc / us) ** 2.5)) + mu * FN * max(ua - us, 0.0)
+    return 8.0 * integral - 4.0 * ua * float(mindlin_force(uc, d, R, mu, E_star, G_star))

@@ -1,2 +1,13 @@
 """Lubrication: reduced squeeze/sliding forces, the Eq. 13 pair law, a Reynolds reference,
-film dynamics, mixed lubrication and lubricated polishing (SI units)."""
+film dynamics, mixed lubrication and lubricated polishing (SI units).
+
+Modules: :mod:`.reference` (exact/asymptotic forces), :mod:`.reduced` (named
+reduced models, ``Params``, ``solve``, ``squeeze_damper_force``,
+``params_from_scene``), :mod:`.pairlaw`, :mod:`.reynolds`, :mod:`.dynamics`,
+:mod:`.polishing`, :mod:`.summary`.
+"""
+
+from .reduced import Params, params_from_scene, solve, squeeze_damper_force
+from .summary import lubrication_summary
+
+__all__ = ["Params", "params_from_scene", "solve", "squeeze_damper_force", "lubrication_summary"]

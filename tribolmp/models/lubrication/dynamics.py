@@ -47,6 +47,7 @@ __all__ = [
     "MixedParams",
     "mixed_approach",
     "winkler_normal_force",
+    "summits",
 ]
 
 SCHEMES = MethodRegistry("film scheme")
@@ -164,6 +165,14 @@ def exact_gap(p: FilmParams, t):
     return np.array([inv(y0 - W * float(tt)) for tt in np.atleast_1d(t)])
 
 
+def _log_gap(p: FilmParams, t: np.ndarray) -> np.ndarray:
+    """ln h(t) without underflow for the damper (ln h = ln h0 - W t / alpha); else ln of the gap."""
+    if p.model == "damper":
+        return math.log(p.gap0) - p.load * t / (6.0 * math.pi * p.viscosity * p.radius**2)
+    with np.errstate(divide="ignore"):
+        return np.log(exact_gap(p, t))
+
+
 @SCHEMES.register("log")
 def _log_scheme(p: FilmParams, t: np.ndarray) -> tuple[np.ndarray, int]:
     phi, inv, _ = _primitive(p)
@@ -231,9 +240,12 @@ def approach(params: FilmParams, *, scheme: str = "log", rng=None) -> Result:
         h_exact=h_ex,
         max_rel_error=float(np.nanmax(err)) if err.size else 0.0,
         min_gap=float(np.nanmin(h)),
-        collapsed=bool(h[-1] == 0.0),
+        # only the shear-thinning power law closes the film in finite time; a damper
+        # gap that underflows to 0.0 in float is still open (see log_h)
+        collapsed=bool(_primitive(params)[2] and h[-1] == 0.0),
+        log_h=np.log(np.where(h > 0, h, np.nan)) if scheme == "explicit" else _log_gap(params, t),
         nit=nit,
-        units={"t": "s", "h": "m", "h_exact": "m", "min_gap": "m"},
+        units={"t": "s", "h": "m", "h_exact": "m", "min_gap": "m", "log_h": "ln(m)"},
     )
     if not np.all(np.isfinite(h)) or res.min_gap < 0:
         res.status = -1

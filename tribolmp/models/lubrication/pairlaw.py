@@ -97,7 +97,8 @@ def pair_forces(pos_a, area_a, vel_a, pos_b, area_b, vel_b, viscosity, radius, *
     Valid for the normal (squeeze) part only; elements must satisfy
     :func:`check_element_size` against the other body.
     """
-    pos_a, pos_b = np.atleast_2d(pos_a), np.atleast_2d(pos_b)
+    pos_a, pos_b = np.atleast_2d(np.asarray(pos_a, float)), np.atleast_2d(np.asarray(pos_b, float))
+    area_a, area_b = np.asarray(area_a, float), np.asarray(area_b, float)
     vel_a = np.broadcast_to(vel_a, pos_a.shape)
     vel_b = np.broadcast_to(vel_b, pos_b.shape)
     pref = 6.0 * viscosity * radius / math.pi
@@ -218,7 +219,9 @@ def pairlaw_sphere_plane_exact(radius, viscosity, gap, velocity):
     return 6.0 * math.pi * viscosity * radius**2 * velocity / gap / (1.0 + gap / (2.0 * radius))
 
 
-def sphere_plane_pair_force(radius, viscosity, gap, velocity, *, refine=0.25, plane_extent=30.0) -> Result:
+def sphere_plane_pair_force(
+    radius, viscosity, gap, velocity, *, refine=0.25, plane_extent=30.0, max_pairs=4e8
+) -> Result:
     """Pair-law squeeze force of a sphere above a plane by ring quadrature.
 
     Parameters
@@ -229,6 +232,8 @@ def sphere_plane_pair_force(radius, viscosity, gap, velocity, *, refine=0.25, pl
         Ring width / local gap; must be <= 0.5 (element-size rule).
     plane_extent : float
         Plane radius in units of R.
+    max_pairs : float
+        Refuse (ParameterError) quadratures with more ring pairs (cost ~ R/h).
 
     Returns
     -------
@@ -244,6 +249,11 @@ def sphere_plane_pair_force(radius, viscosity, gap, velocity, *, refine=0.25, pl
     res = Result(method="pairlaw-rings")
     with timed(res):
         sphere, plane = sphere_plane_rings(radius, gap, refine=refine, plane_extent=plane_extent)
+        pairs = sphere.r.size * plane.r.size
+        if pairs > max_pairs:
+            raise ParameterError(
+                "gap", f"h/R large enough for <= {max_pairs:.0e} ring pairs at refine={refine:g} (needs {pairs:.1e})", gap
+            )
         check_element_size(sphere.width, sphere.gap, what="sphere ring width")
         check_element_size(plane.width, plane.gap, what="plane ring width")
         force = ring_squeeze_force(sphere, plane, viscosity, radius, velocity)

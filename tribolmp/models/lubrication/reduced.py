@@ -243,11 +243,16 @@ def squeeze_damper_force(radius: float, viscosity: float, gap: float, velocity: 
     velocity : float
         Approach speed V = -dh/dt in m/s.
     """
-    check_positive("radius", radius, "m")
-    check_positive("viscosity", viscosity, "Pa s")
-    check_positive("gap", gap, "m")
-    check_range("velocity", velocity, unit="m/s")
-    return 6.0 * math.pi * viscosity * radius**2 * velocity / gap
+    try:
+        ok = radius > 0 and viscosity > 0 and gap > 0 and math.isfinite(radius * viscosity * gap * velocity)
+    except TypeError:
+        ok = False
+    if not ok:  # slow path only to build the one-line message naming the field
+        check_positive("radius", radius, "m")
+        check_positive("viscosity", viscosity, "Pa s")
+        check_positive("gap", gap, "m")
+        check_range("velocity", velocity, unit="m/s")
+    return ref.damper_force(radius, viscosity, float(gap), float(velocity))
 
 
 def params_from_scene(scene, *, velocity: float | None = None) -> Params:

@@ -92,7 +92,9 @@ def damper_force(radius, viscosity, gap, velocity):
     float or ndarray
         Force in N opposing the approach.
     """
-    return damper_coefficient(radius, viscosity) * np.asarray(velocity) / np.asarray(gap) * 1.0
+    if type(gap) is float and type(velocity) is float:  # scalar fast path (no numpy overhead)
+        return 6.0 * math.pi * viscosity * radius * radius * velocity / gap
+    return damper_coefficient(radius, viscosity) * np.asarray(velocity) / np.asarray(gap)
 
 
 def cox_brenner_force(radius, viscosity, gap, velocity):

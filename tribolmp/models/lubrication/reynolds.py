@@ -73,6 +73,9 @@ class ReynoldsParams:
     gap_shape : str
         ``"paraboloid"`` (h0 + r^2/2R, the lubrication form) or ``"sphere"``
         (exact sphere surface; needs the domain inside r < R).
+    sliding_velocity : float
+        Speed U (m/s) of the sphere along +x over the fixed plane (``"xy"``,
+        Newtonian only); adds the Couette source (U/2) dh/dx and returns the drag.
     tol : float
         Newton stop: squared Newton decrement below tol * |E|.
     max_iter : int
@@ -88,11 +91,14 @@ class ReynoldsParams:
     cells: int = param(200, lo=4, hi=20_000)
     domain: float = param(30.0, lo=1.0, hi=1e9)
     gap_shape: str = param("paraboloid", choices=("paraboloid", "sphere"))
+    sliding_velocity: float = param(0.0, unit="m/s", lo=-1e6, hi=1e6)
     tol: float = param(1e-18, lo=0.0, lo_open=True, hi=1e-3)
     max_iter: int = param(200, lo=1, hi=10_000)
 
     def __post_init__(self) -> None:
         validate_dataclass(self)
+        if self.sliding_velocity != 0.0 and self.power_law_index != 1.0:
+            raise ParameterError("sliding_velocity", "0 for a power-law fluid (sliding is Newtonian only)", self.sliding_velocity)
         if self.gap_shape == "sphere" and self.domain * self.contact_radius >= self.radius:
             raise ParameterError(
                 "domain",
@@ -126,6 +132,13 @@ def _gap(p: ReynoldsParams, r: np.ndarray) -> np.ndarray:
     return p.gap + r * r / (p.radius + np.sqrt(p.radius**2 - r * r))
 
 
+def _gap_dx(p: ReynoldsParams, x: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """dh/dx of the gap (paraboloid: x/R; sphere: x/sqrt(R^2 - r^2))."""
+    if p.gap_shape == "paraboloid":
+        return x / p.radius
+    return x / np.sqrt(p.radius**2 - r * r)
+
+
 def _mobility(p: ReynoldsParams, h: np.ndarray) -> np.ndarray:
     """a(h) with slot flux Phi = a(h) G^(1/n) (m^(2+1/n) / (Pa^(1/n) s))."""
     n = p.power_law_index
@@ -142,7 +155,7 @@ class _Energy:
         self.free_index[free] = np.arange(free.size)
 
     def grads(self, p_full):
-        return np.einsum("edk,ek->ed", self.B, p_full[self.conn])
+        return np.matmul(self.B, p_full[self.conn][:, :, None])[:, :, 0]
 
     def value(self, p_full):
         g = self.grads(p_full)
@@ -169,8 +182,9 @@ class _Energy:
             flux = (self.W * G ** (s - 2.0) if s > 2 else c)[:, None] * g
             ghat = g / np.sqrt(Gr2)[:, None]
             M = np.eye(d)[None] + (s - 2.0) * ghat[:, :, None] * ghat[:, None, :]
-        local_grad = np.einsum("ed,edk->ek", flux, self.B)
-        local_H = np.einsum("e,edk,edf,efl->ekl", c, self.B, M, self.B)
+        local_grad = np.matmul(flux[:, None, :], self.B)[:, 0, :]
+        # B^T M B per element with batched matmul (einsum over four operands is slow)
+        local_H = c[:, None, None] * np.matmul(self.B.transpose(0, 2, 1), np.matmul(M, self.B))
         grad = np.bincount(self.conn.ravel(), local_grad.ravel(), minlength=self.n_nodes) - self.S
         k = self.conn.shape[1]
         rows = np.repeat(self.conn, k, axis=1).ravel()
@@ -191,7 +205,7 @@ def _newton(energy: _Energy, p0_full, tol, max_iter):
     dec = math.inf
     for it in range(1, max_iter + 1):
         grad, H = energy.grad_hess(p)
-        dp = -spsolve(H, grad)
+        dp = -spsolve(H, grad, permc_spec="MMD_AT_PLUS_A")  # symmetric ordering
         dec = float(-grad @ dp)
         if not math.isfinite(dec):
             raise ConvergenceError("Reynolds Newton step is not finite (mesh too coarse or parameters extreme)")
@@ -222,7 +236,7 @@ def _solve_energy(p: ReynoldsParams, conn, B, area_weights, coeff, S, n_nodes, f
     lin = _Energy(conn, B, area_weights * coeff["newton"], S, n_nodes, free, 2.0)
     p_full = np.zeros(n_nodes)
     grad, H = lin.grad_hess(p_full)
-    p_full[free] = -spsolve(H, grad)
+    p_full[free] = -spsolve(H, grad, permc_spec="MMD_AT_PLUS_A")
     if n == 1.0:
         return p_full, 1
     energy = _Energy(conn, B, area_weights * coeff["power"], S, n_nodes, free, s)
@@ -242,6 +256,8 @@ def _coefficients(p: ReynoldsParams, h: np.ndarray) -> dict[str, np.ndarray]:
 
 @REYNOLDS.register("axisymmetric")
 def _axisymmetric(p: ReynoldsParams) -> Result:
+    if p.sliding_velocity != 0.0:
+        raise ParameterError("sliding_velocity", "0 for method 'axisymmetric' (use method 'xy')", p.sliding_velocity)
     rc = p.contact_radius
     r = graded_nodes(p.cells, p.domain * rc, rc)
     ne = r.size - 1
@@ -300,25 +316,41 @@ def _xy(p: ReynoldsParams) -> Result:
     B[:, 1, :] = np.stack([px[:, 2] - px[:, 1], px[:, 0] - px[:, 2], px[:, 1] - px[:, 0]], 1) / det[:, None]
     # 3-point (edge-midpoint) rule, exact for quadratics, for int a(h) dA.
     coeff = {"newton": np.zeros(conn.shape[0]), "power": np.zeros(conn.shape[0])}
+    S = np.bincount(conn.ravel(), np.repeat(p.velocity * area / 3.0, 3), minlength=nx * nx)
+    U = p.sliding_velocity
+    mids = []
     for i, j in ((0, 1), (1, 2), (2, 0)):
         mx, my = 0.5 * (px[:, i] + px[:, j]), 0.5 * (py[:, i] + py[:, j])
-        cq = _coefficients(p, _gap(p, np.hypot(mx, my)))
+        mr = np.hypot(mx, my)
+        mids.append((i, j, mx, mr))
+        cq = _coefficients(p, _gap(p, mr))
         for key in coeff:
             coeff[key] += cq[key] * area / 3.0
-    S = np.bincount(conn.ravel(), np.repeat(p.velocity * area / 3.0, 3), minlength=nx * nx)
+        if U != 0.0:
+            # Couette source (U/2) dh/dx; hat functions are 1/2 at the edge midpoints
+            src = 0.5 * U * _gap_dx(p, mx, mr) * area / 3.0 * 0.5
+            S += np.bincount(conn[:, i], src, minlength=nx * nx) + np.bincount(conn[:, j], src, minlength=nx * nx)
     boundary = np.zeros((nx, nx), dtype=bool)
     boundary[[0, -1], :] = True
     boundary[:, [0, -1]] = True
     free = idx[~boundary]
     pr, nit = _solve_energy(p, conn, B, np.ones(conn.shape[0]), coeff, S, nx * nx, free)
     force = float(np.sum(area * pr[conn].mean(axis=1)))
+    drag = 0.0
+    if U != 0.0:
+        # drag on the sphere = int [eta U / h + (1/2) p dh/dx] dA (Couette shear on the sphere
+        # plus the pressure on its tilted surface, after one integration by parts)
+        for i, j, mx, mr in mids:
+            pm = 0.5 * (pr[conn[:, i]] + pr[conn[:, j]])
+            drag += float(np.sum(area / 3.0 * (p.viscosity * U / _gap(p, mr) + 0.5 * pm * _gap_dx(p, mx, mr))))
     return dict(
         force=force,
         x=x,
         pressure=pr.reshape(nx, nx),
         half_width=float(x[-1]),
+        drag=drag,
         nit=nit,
-        units={"force": "N", "x": "m", "pressure": "Pa", "half_width": "m"},
+        units={"force": "N", "x": "m", "pressure": "Pa", "half_width": "m", "drag": "N"},
     )
 
 

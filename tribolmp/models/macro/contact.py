@@ -94,14 +94,21 @@ class ContactSprings:
         return normal_force(self.x, self.g, d, self.E_star)
 
     def springs(self, load: float) -> tuple[np.ndarray, np.ndarray]:
-        """Per-spring normal forces ``E* w_i f_i`` (N) and tangential stiffnesses ``G* w_i`` (N/m) at ``load``."""
-        from ..contact.mdr import spring_widths
+        """Per-spring normal forces ``E* w_i f_i`` (N) and tangential stiffnesses ``G* l_i`` (N/m) at ``load``.
+
+        ``w_i`` is the spring width and ``l_i`` the contact length it owns, as
+        in :class:`TangentialMDR` (they differ only in the cells cut by the
+        contact edge), so that these springs are exactly those of the contact model.
+        """
+        from ..contact import mdr
 
         d = self.indentation(load)
         f = d - self.g
         dx = (self.x[-1] - self.x[0]) / (self.x.size - 1)
-        w = spring_widths(f, dx)
-        return self.E_star * w * np.where(f > 0, f, 0.0), self.G_star * w
+        w = mdr.spring_widths(f, dx)
+        # TangentialMDR's per-spring contact lengths (no public name yet in the contact model)
+        ln = mdr._contact_lengths(f, dx)
+        return self.E_star * w * np.where(f > 0, f, 0.0), self.G_star * ln
 
     def tangential(self):
         """A fresh :class:`~tribolmp.models.contact.mdr.TangentialMDR` on this row."""

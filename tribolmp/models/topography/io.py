@@ -78,7 +78,7 @@ def save_ascii_grid(path, h, pixel_size: float) -> Path:
             raise SurfaceFileError(f"{path}: an ESRI .asc grid needs a 2D map, got shape {h.shape}; use .xyz")
         ny, nx = h.shape
         header = (f"ncols {nx}\nnrows {ny}\nxllcorner 0.0\nyllcorner 0.0\n"
-                  f"cellsize {pixel_size:.17g}\nNODATA_value -9999\n")
+                  f"cellsize {pixel_size!r}\nNODATA_value -9999\n")
         with path.open("w") as fh:
             fh.write(header)
             np.savetxt(fh, h[::-1], fmt="%.10e")
@@ -129,7 +129,7 @@ def _read_asc(path: Path):
     lines = path.read_text().splitlines()
     header = {}
     i = 0
-    while i < len(lines) and lines[i].split() and lines[i].split()[0].isalpha():
+    while i < len(lines) and lines[i].split() and lines[i].split()[0][0].isalpha():
         key, value = lines[i].split()[:2]
         header[key.lower()] = float(value)
         i += 1

@@ -63,6 +63,8 @@ __all__ = [
     "euler_dt_limit",
     "expected_periodogram",
     "wavevectors",
+    "mode_ratios",
+    "make_stepper",
 ]
 
 #: Largest grid (points in total) accepted: keeps memory of the 6 work arrays < ~3 GB.
@@ -206,6 +208,30 @@ def _mean_square_dev(p: TopographyParams, s_grid: np.ndarray) -> float:
     return total / p.length**p.dim
 
 
+def mode_ratios(p: TopographyParams, h, expected: np.ndarray) -> np.ndarray:
+    """Periodogram / expectation for the statistically independent complex modes.
+
+    Keeps the real-FFT modes that are neither self-conjugate nor the mirror
+    of another kept mode (1D: 0 < k < k_N; 2D: columns 1 ... n/2-1), ordered by
+    |k|, so that each ratio is Exp(1) distributed under the theory (see
+    :func:`.spectra.psd_consistency`).  Modes with zero expectation are dropped.
+
+    Parameters
+    ----------
+    h : array_like
+        Heights (m), shape ``(replicas, *p.shape)`` or ``p.shape``.
+    expected : ndarray
+        Expected periodogram on the real-FFT grid (e.g. :func:`expected_periodogram`).
+    """
+    s = spectra.periodogram(np.asarray(h).reshape((-1,) + p.shape), p.dx, p.dim)
+    kmag = np.broadcast_to(np.sqrt(sum(k**2 for k in wavevectors(p))), _spec_shape(p))
+    keep = np.zeros(_spec_shape(p), dtype=bool)
+    keep[..., 1 : p.n // 2] = True
+    keep &= expected > 0
+    order = np.argsort(kmag[keep], kind="stable")
+    return (s[:, keep] / expected[keep])[:, order]
+
+
 # ------------------------------------------------------------------ schemes
 
 SCHEMES = MethodRegistry("topography scheme")
@@ -220,24 +246,29 @@ class _ExactOU:
         self.lattice = p.operator == "lattice"
         self.real_dtype = np.float32 if p.precision == "single" else np.float64
         self.cplx_dtype = np.complex64 if p.precision == "single" else np.complex128
-        kmag, k2 = _modes(p, self.lattice)
-        self.gamma = p.mu + p.d0 * k2
-        # Variance rate of the DFT coefficient: 2 (Dz + Dx l^2 k^2) F~ * n^dim / dx^dim.
-        npts = p.n**p.dim
-        self.q = 2.0 * (p.dz + p.dx_noise * p.l**2 * k2) * spectra.noise_spectrum(kmag, p.correlation_length)
-        self.q *= npts / p.dx**p.dim
-        self.decay = np.exp(-self.gamma * p.dt).astype(self.real_dtype)
-        self.amp = self._amplitude(p.dt)
+        gamma, q = self._rates()
+        self.decay = np.exp(-gamma * p.dt).astype(self.real_dtype)
+        self.amp = self._amplitude(p.dt, gamma, q)
+        del gamma, q  # only decay and amp are kept: memory stays at ~3 grid arrays
         shape = (replicas,) + _spec_shape(p)
         self.hk = np.zeros(shape, dtype=self.cplx_dtype)
         # Normal deviates are written in place into this buffer, viewed as complex.
         self._buf = np.empty(shape + (2,), dtype=self.real_dtype)
         self._noise = self._buf.view(self.cplx_dtype)[..., 0]
 
-    def _amplitude(self, t: float) -> np.ndarray:
+    def _rates(self):
+        """(gamma, q): mode decay rate (1/s) and DFT variance rate 2 (Dz + Dx l^2 k^2) F~ n^dim/dx^dim."""
+        p = self.p
+        kmag, k2 = _modes(p, self.lattice)
+        gamma = p.mu + p.d0 * k2
+        q = 2.0 * (p.dz + p.dx_noise * p.l**2 * k2) * spectra.noise_spectrum(kmag, p.correlation_length)
+        q *= p.n**p.dim / p.dx**p.dim
+        return gamma, q
+
+    def _amplitude(self, t: float, gamma, q) -> np.ndarray:
         """Per-mode noise amplitude for an interval t, scaled for the complex deviates."""
         with np.errstate(invalid="ignore"):
-            var = np.where(self.q > 0, self.q * spectra._phi(self.gamma, t), 0.0)
+            var = np.where(q > 0, q * spectra._phi(gamma, t), 0.0)
         amp = np.sqrt(var / 2.0)  # complex deviate: E|xi|^2 = 2 with unit-variance parts
         # Self-conjugate modes (k = 0 and Nyquist) are real: their real part alone
         # must carry the full variance.
@@ -273,9 +304,10 @@ class _ExactOU:
 
     def set_state(self, h0) -> None:
         if isinstance(h0, str):  # "stationary"
-            if np.any((self.gamma == 0) & (self.q > 0)):
+            gamma, q = self._rates()
+            if np.any((gamma == 0) & (q > 0)):
                 raise ParameterError("h0", "a surface array when mu = 0 (no stationary state)", h0)
-            self.hk[...] = self.draw(self._amplitude(math.inf))
+            self.hk[...] = self.draw(self._amplitude(math.inf, gamma, q))
         elif h0 is not None:
             self.hk[...] = _rfft(self.p, h0)
 
@@ -346,6 +378,23 @@ class _EulerFD:
 
 SCHEMES.register("exact")(_ExactOU)
 SCHEMES.register("euler")(_EulerFD)
+
+
+def make_stepper(params: TopographyParams, *, rng: np.random.Generator, scheme: str = "exact",
+                 replicas: int = 1, h0: Any = None):
+    """A low-level stepper for callers that drive the time loop themselves.
+
+    Returns an object with ``step()`` (advance by ``params.dt``; the exact
+    scheme keeps the state in Fourier space and synthesises nothing),
+    ``heights()`` (m, shape ``(replicas, *params.shape)``; one inverse FFT for
+    the exact scheme) and ``periodogram()`` (real-FFT grid, m^(dim+2)).
+    ``params.steps`` is ignored.  Used by the benchmark to time one step.
+    """
+    if not isinstance(rng, np.random.Generator):
+        raise ParameterError("rng", "a numpy.random.Generator", type(rng).__name__)
+    st = SCHEMES.get(scheme, "scheme")(params, int(replicas), rng)
+    st.set_state(h0 if h0 is None or isinstance(h0, str) else _check_h0(params, h0))
+    return st
 
 
 def _rfft(p, h):
@@ -429,6 +478,8 @@ def evolve(
     h0_arr = None
     if h0 is not None and not isinstance(h0, str):
         h0_arr = _check_h0(p, h0)
+        if h0_arr.ndim == p.dim + 1 and h0_arr.shape[0] != replicas:
+            raise ParameterError("h0", f"{replicas} initial surfaces (one per replica)", h0_arr.shape[0])
     elif isinstance(h0, str) and h0 != "stationary":
         raise ParameterError("h0", "an array, None or 'stationary'", h0)
 

@@ -138,23 +138,58 @@ def write_curve_csv(path: str | Path, amplitude, force) -> Path:
     return path
 
 
-def _project(a: np.ndarray, y: np.ndarray, length: float, shape, quantity: str, background: bool, w=None):
-    """Best non-negative (A, B) for fixed L; returns (weighted rss, A, B)."""
-    from scipy.optimize import nnls
+def _project_many(a, y, lengths, shape, quantity: str, background: bool, w=None):
+    """Best non-negative (A, B) for each fixed L (closed-form 2x2 least squares).
 
-    f = shape(a / length, quantity)
-    cols = [f, np.ones_like(f)] if background else [f]
+    Returns arrays (weighted rss, A, B) over ``lengths``.  With the
+    non-negativity constraints the optimum is either the unconstrained one or
+    lies on an edge (A = 0 or B = 0), each again a 1-parameter closed form.
+    """
     w = np.ones_like(y) if w is None else w
-    coef, rnorm = nnls(np.column_stack(cols) * w[:, None], y * w)
-    return rnorm * rnorm, coef[0], (coef[1] if background else 0.0)
+    L = np.atleast_1d(np.asarray(lengths, dtype=float))
+    f = shape(a[None, :] / L[:, None], quantity) * w  # (nL, n)
+    yw, one = y * w, w
+    sff, sfy = np.einsum("ij,ij->i", f, f), f @ yw
+    syy = float(yw @ yw)
+    tiny = 1e-300
+    # A only (B = 0)
+    A1 = np.maximum(sfy, 0.0) / np.maximum(sff, tiny)
+    best_rss = syy - 2 * A1 * sfy + A1 * A1 * sff
+    best_A, best_B = A1, np.zeros_like(A1)
+    if background:
+        s11, s1y, sf1 = float(one @ one), float(one @ yw), f @ one
+        B2 = max(s1y, 0.0) / s11  # B only (A = 0)
+        rss2 = syy - 2 * B2 * s1y + B2 * B2 * s11
+        det = sff * s11 - sf1 * sf1
+        ok = det > 1e-12 * sff * s11
+        with np.errstate(divide="ignore", invalid="ignore"):
+            A3 = np.where(ok, (sfy * s11 - sf1 * s1y) / det, -1.0)
+            B3 = np.where(ok, (sff * s1y - sf1 * sfy) / det, -1.0)
+        rss3 = syy - 2 * (A3 * sfy + B3 * s1y) + A3 * A3 * sff + 2 * A3 * B3 * sf1 + B3 * B3 * s11
+        feas3 = ok & (A3 >= 0) & (B3 >= 0)
+        use2 = rss2 < best_rss
+        best_rss = np.where(use2, rss2, best_rss)
+        best_A = np.where(use2, 0.0, best_A)
+        best_B = np.where(use2, B2, best_B)
+        use3 = feas3 & (rss3 < best_rss)
+        best_rss = np.where(use3, rss3, best_rss)
+        best_A = np.where(use3, A3, best_A)
+        best_B = np.where(use3, B3, best_B)
+    return np.maximum(best_rss, 0.0), best_A, best_B
+
+
+def _project(a, y, length: float, shape, quantity: str, background: bool, w=None):
+    """Scalar version of :func:`_project_many`: (rss, A, B) at one L."""
+    r, A, B = _project_many(a, y, [length], shape, quantity, background, w)
+    return float(r[0]), float(A[0]), float(B[0])
 
 
 def _crossing(fun, lo: float, hi: float) -> float:
-    """Where the RSS profile crosses the threshold between two grid points (log-bisection)."""
+    """Where the RSS profile crosses the threshold between two grid points (bisection in ln L)."""
     from scipy.optimize import brentq
 
     flo, fhi = fun(lo), fun(hi)
-    if flo * fhi > 0:  # the minimum itself sits at the threshold: no crossing inside
+    if flo * fhi > 0:  # no sign change inside (the optimum sits at the threshold)
         return lo if abs(flo) < abs(fhi) else hi
     return math.exp(brentq(lambda t: fun(math.exp(t)), math.log(lo), math.log(hi), xtol=1e-12, rtol=1e-10))
 
@@ -163,7 +198,7 @@ def _best_length(a, y, quantity, shape, background, grid, w):
     """Global grid scan of the RSS profile, then a bounded refinement; returns (L, rss_grid, i)."""
     from scipy.optimize import minimize_scalar
 
-    rss = np.array([_project(a, y, L, shape, quantity, background, w)[0] for L in grid])
+    rss = _project_many(a, y, grid, shape, quantity, background, w)[0]
     i = int(np.argmin(rss))
     n_grid = grid.size
     lb, ub = np.log(grid[max(i - 1, 0)]), np.log(grid[min(i + 1, n_grid - 1)])
@@ -178,7 +213,7 @@ def _best_length(a, y, quantity, shape, background, grid, w):
 
 
 def _fit_one(curve: MeasuredCurve, model: str, background: bool, n_grid: int, n_boot: int, rng, weighting: str) -> dict:
-    from scipy.stats import f as f_dist
+    from scipy.special import fdtri
 
     shape = SHAPES.get(model, "model")
     a, y = curve.amplitude, curve.value
@@ -194,7 +229,7 @@ def _fit_one(curve: MeasuredCurve, model: str, background: bool, n_grid: int, n_
     if dof > 0:
         # 68 % profile-likelihood interval with the noise estimated from the
         # residuals: F-test threshold (exact for linear models, honest for small n).
-        thresh = rss_min * (1.0 + f_dist.ppf(0.6827, 1, dof) / dof)
+        thresh = rss_min * (1.0 + fdtri(1, dof, 0.6827) / dof)
         prof = lambda L: _project(a, y, L, shape, curve.quantity, background, w)[0] - thresh  # noqa: E731
         # The confidence set {L : RSS(L) <= thresh} can be disconnected (the
         # pinning profile has side minima); report its hull, not the branch
@@ -320,7 +355,12 @@ def fit_length(
                "residual": "1" if weighting == "relative" else ("N^2" if q == "force_sq" else "N"),
                "force0_N": "N", "background": "N^2" if q == "force_sq" else "N"},
     )
-    if not best["bounded"]:
+    aics = sorted(c["aic"] for c in cands.values())
+    res.delta_aic = aics[1] - aics[0] if len(aics) > 1 else None
+    res.model_ambiguous = bool(res.delta_aic is not None and res.delta_aic < 2.0)
+    if res.model_ambiguous:
+        res.message += f"; models not distinguishable (delta AIC = {res.delta_aic:.2f} < 2)"
+    if not best["bounded"] or res.model_ambiguous:
         res.status = 1
     return res
 

@@ -1,0 +1,185 @@
+"""Speed against error of the reduced lubrication models, against the Reynolds and Stokes references.
+
+For h/R from 1e-4 to 0.3 every reduced squeeze model (damper, Cox-Brenner,
+Brenner series, the Eq. 13 pair law by ring quadrature) and the numerical
+Reynolds solver at several grid sizes (axisymmetric and 2D x-y) are timed
+and compared with
+
+* the exact Stokes force (Brenner's series), the physical reference, and
+* the numerical Reynolds solution on the finest axisymmetric grid, the
+  thin-film reference the issue asks for;
+
+plus the power-law Reynolds solver against the closed-form power-law force.
+Timings are the minimum over repeats (the machine is shared), all in one run
+so ratios are side by side.
+
+Usage::
+
+    python benchmarks/lubrication_speed_vs_error.py [--quick] [--out CSV]
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import time
+from pathlib import Path
+
+
+def _time(fn, *, min_time=0.05, repeats=3):
+    """Minimum wall time (s) per call of ``fn`` over ``repeats`` batches."""
+    n = 1
+    while True:
+        t0 = time.perf_counter()
+        for _ in range(n):
+            out = fn()
+        dt = time.perf_counter() - t0
+        if dt >= min_time or n >= 1 << 20:
+            break
+        n *= 4
+    best = dt / n
+    for _ in range(repeats - 1):
+        t0 = time.perf_counter()
+        for _ in range(n):
+            fn()
+        best = min(best, (time.perf_counter() - t0) / n)
+    return best, out
+
+
+def main(argv=None) -> int:
+    """Run the benchmark, print the table and write the CSV."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="small grids and fewer gaps")
+    ap.add_argument("--out", default=str(Path(__file__).parent / "results" / "lubrication_speed_vs_error.csv"))
+    args = ap.parse_args(argv)
+
+    from tribolmp.models.lubrication import pairlaw
+    from tribolmp.models.lubrication import reference as ref
+    from tribolmp.models.lubrication.reduced import squeeze_damper_force
+    from tribolmp.models.lubrication.reynolds import ReynoldsParams, solve
+
+    R, eta, V = 1e-3, 0.1, 1e-3
+    if args.quick:
+        eps_list = [1e-4, 1e-3, 1e-2, 0.1, 0.3]
+        cells_axi, cells_xy, refines = [50, 200], [16], [0.5]
+        ref_cells = 800
+    else:
+        eps_list = [1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3]
+        cells_axi, cells_xy, refines = [25, 50, 100, 200, 400, 800], [16, 32, 64], [0.5, 0.25]
+        ref_cells = 3200
+    rows = []
+
+    def row(model, eps, res_s, time_s, force, f_rey, f_stokes):
+        rows.append(
+            dict(
+                model=model,
+                h_over_R=eps,
+                resolution=res_s,
+                time_s=time_s,
+                force_N=force,
+                err_vs_reynolds=force / f_rey - 1.0,
+                err_vs_stokes=force / f_stokes - 1.0,
+            )
+        )
+
+    for eps in eps_list:
+        h = eps * R
+        f_stokes = ref.brenner_force(R, eta, h, V)
+        rey_ref = solve(ReynoldsParams(radius=R, gap=h, velocity=V, viscosity=eta, cells=ref_cells, domain=1000.0))
+        f_rey = rey_ref.force
+        t, f = _time(lambda: squeeze_damper_force(R, eta, h, V))
+        row("damper", eps, "-", t, f, f_rey, f_stokes)
+        t, f = _time(lambda: float(ref.damper_force(R, eta, h, V)))
+        row("damper(raw)", eps, "-", t, f, f_rey, f_stokes)
+        if eps <= 0.1:
+            t, f = _time(lambda: float(ref.cox_brenner_force(R, eta, h, V)))
+            row("cox-brenner", eps, "-", t, f, f_rey, f_stokes)
+        t, f = _time(lambda: ref.brenner_force(R, eta, h, V))
+        row("brenner", eps, "-", t, f, f_rey, f_stokes)
+        for rf in refines:
+            t, res = _time(lambda: pairlaw.sphere_plane_pair_force(R, eta, h, V, refine=rf), min_time=0.0, repeats=1)
+            row("pairlaw", eps, f"refine={rf} rings={res.rings}", t, res.force, f_rey, f_stokes)
+        for cells in cells_axi:
+            p = ReynoldsParams(radius=R, gap=h, velocity=V, viscosity=eta, cells=cells, domain=1000.0)
+            t, res = _time(lambda: solve(p), min_time=0.02)
+            row("reynolds-axisymmetric", eps, f"cells={cells}", t, res.force, f_rey, f_stokes)
+        for cells in cells_xy:
+            p = ReynoldsParams(radius=R, gap=h, velocity=V, viscosity=eta, cells=cells, domain=30.0)
+            t, res = _time(lambda: solve(p, method="xy"), min_time=0.0, repeats=1)
+            row("reynolds-xy(domain 30 r_c)", eps, f"cells={cells}", t, res.force, f_rey, f_stokes)
+
+    # power-law Reynolds (nonlinear Newton) against the closed form on the same truncated disk
+    pl_rows = []
+    for n in ([0.4, 1.5] if args.quick else [1 / 3 + 0.01, 0.4, 0.7, 1.5, 3.0]):
+        for cells in cells_axi:
+            p = ReynoldsParams(radius=R, gap=1e-6, velocity=V, viscosity=eta, power_law_index=n, cells=cells, domain=100.0)
+            t, res = _time(lambda: solve(p), min_time=0.0, repeats=1)
+            exact = ref.power_law_squeeze_force(R, eta, n, 1e-6, V, r_max=res.r_max)
+            t_cf, _ = _time(lambda: ref.power_law_squeeze_force(R, eta, n, 1e-6, V))
+            pl_rows.append(dict(n=n, cells=cells, nit=res.nit, time_s=t, closed_form_time_s=t_cf, rel_error=res.force / exact - 1))
+
+    # sliding: the log coefficient of the drag from the x-y Reynolds solver (Couette source),
+    # on a fixed outer square L = 0.5 R, against GCB (8/15) and the seed's Eq. 12 (1/3)
+    sl_rows = []
+    U, L = 1e-2, 0.5 * R
+    for cells in ([16, 32] if args.quick else [16, 32, 48, 64]):
+        drag, tt = {}, 0.0
+        for eps in (1e-3, 1e-4):
+            h = eps * R
+            p = ReynoldsParams(radius=R, gap=h, velocity=0.0, viscosity=eta, sliding_velocity=U, cells=cells,
+                               domain=L / math.sqrt(2 * R * h))
+            t, res = _time(lambda: solve(p, method="xy"), min_time=0.0, repeats=1)
+            drag[eps], tt = res.drag, tt + t
+        slope = (drag[1e-4] - drag[1e-3]) / math.log(10) / (6 * math.pi * eta * R * U)
+        t_gcb, _ = _time(lambda: float(ref.gcb_sliding_force(R, eta, 1e-6, U)))
+        sl_rows.append(dict(cells=cells, time_s=tt / 2, gcb_time_s=t_gcb, log_slope=slope,
+                            err_vs_gcb=slope / (8 / 15) - 1, err_couette_vs_reynolds=(1 / 3) / slope - 1))
+
+    out = Path(args.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    with open(out, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    pl_out = out.with_name(out.stem + "_powerlaw.csv")
+    with open(pl_out, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(pl_rows[0]))
+        w.writeheader()
+        w.writerows(pl_rows)
+
+    print(f"{'model':<28}{'h/R':>9} {'resolution':<24}{'time (s)':>11}{'err vs Reynolds':>17}{'err vs Stokes':>15}")
+    for r in rows:
+        print(
+            f"{r['model']:<28}{r['h_over_R']:>9.1e} {r['resolution']:<24}{r['time_s']:>11.3e}"
+            f"{r['err_vs_reynolds']:>+17.2e}{r['err_vs_stokes']:>+15.2e}"
+        )
+    print()
+    # speed ratio of the Reynolds reference to the damper at the same h/R
+    for eps in eps_list:
+        td = min(r["time_s"] for r in rows if r["model"] == "damper" and r["h_over_R"] == eps)
+        for r in rows:
+            if r["h_over_R"] == eps and r["model"].startswith("reynolds") and abs(r["err_vs_reynolds"]) < 0.01:
+                print(f"h/R={eps:.1e}: {r['model']} {r['resolution']} (within 1 % of the finest) is {r['time_s'] / td:.2e}x slower than the damper")
+                break
+    print()
+    print(f"{'n':>7}{'cells':>7}{'Newton it':>10}{'time (s)':>11}{'closed form (s)':>17}{'rel error':>12}")
+    for r in pl_rows:
+        print(f"{r['n']:>7.3f}{r['cells']:>7d}{r['nit']:>10d}{r['time_s']:>11.3e}{r['closed_form_time_s']:>17.3e}{r['rel_error']:>+12.2e}")
+    sl_out = out.with_name(out.stem + "_sliding.csv")
+    with open(sl_out, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(sl_rows[0]))
+        w.writeheader()
+        w.writerows(sl_rows)
+    print()
+    print("sliding drag: d D / d ln(R/h) / (6 pi eta R U) from Reynolds x-y (GCB: 8/15 = 0.5333, Eq. 12: 1/3)")
+    print(f"{'cells':>7}{'time (s)':>11}{'GCB (s)':>11}{'slope':>9}{'GCB err':>10}{'Eq.12 err':>11}")
+    for r in sl_rows:
+        print(f"{r['cells']:>7d}{r['time_s']:>11.3e}{r['gcb_time_s']:>11.3e}{r['log_slope']:>9.4f}"
+              f"{r['err_vs_gcb']:>+10.2e}{r['err_couette_vs_reynolds']:>+11.2e}")
+    print(f"\nwrote {out}, {pl_out} and {sl_out}")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    raise SystemExit(main())

@@ -1,0 +1,136 @@
+"""Macroscale dynamics: a rigid body on MDR contact springs (seed Section 2, Fig. 4).
+
+* :mod:`.rigid_body` -- stick-slip under a pulling spring (event-driven,
+  stiff-capable) and prescribed oscillation with micro-slip;
+* :mod:`.friction` -- friction laws (constant, velocity weakening, tables
+  from the nanoscale model);
+* :mod:`.multirate` -- cycle-averaged contact for a fast oscillation over a slow drift;
+* :mod:`.contact` -- the MDR spring row under the body (uses
+  :mod:`tribolmp.models.contact.mdr`);
+* :mod:`.reference` -- closed-form stick-slip cycle, Mindlin-Deresiewicz loop.
+
+Scene adapters: :func:`params_from_scene`, :func:`stick_slip_from_scene`,
+:func:`oscillation_from_scene`.
+"""
+
+from __future__ import annotations
+
+from ...errors import ParameterError
+from .contact import ContactSprings, profile_from_geometry
+from .friction import (
+    FRICTION_LAWS,
+    ConstantFriction,
+    FrictionLaw,
+    TabulatedFriction,
+    VelocityWeakening,
+    load_friction_law,
+    make_friction_law,
+)
+from .multirate import AveragedContact, DriftParams, drift_under_oscillation
+from .rigid_body import STICK_SLIP_METHODS, OscillationParams, StickSlipParams, oscillate, stick_slip
+
+__all__ = [
+    "StickSlipParams",
+    "OscillationParams",
+    "DriftParams",
+    "stick_slip",
+    "oscillate",
+    "drift_under_oscillation",
+    "solve",
+    "params_from_scene",
+    "contact_from_scene",
+    "stick_slip_from_scene",
+    "oscillation_from_scene",
+    "ContactSprings",
+    "AveragedContact",
+    "FrictionLaw",
+    "ConstantFriction",
+    "VelocityWeakening",
+    "TabulatedFriction",
+    "FRICTION_LAWS",
+    "STICK_SLIP_METHODS",
+    "make_friction_law",
+    "load_friction_law",
+    "profile_from_geometry",
+]
+
+
+def solve(params: StickSlipParams, *, method: str = "auto", rng=None, law: FrictionLaw | None = None):
+    """Model-contract alias of :func:`stick_slip` (``rng`` unused: deterministic)."""
+    return stick_slip(params, law, method=method)
+
+
+def params_from_scene(scene, **overrides) -> StickSlipParams:
+    """:class:`StickSlipParams` from ``[kinematics]`` (mass, drive stiffness, velocity, duration) and ``[load]``."""
+    kin = scene.kinematics
+    kw = dict(mass=kin.mass, drive_stiffness=kin.drive_stiffness, drive_velocity=kin.sliding_velocity,
+              normal_force=scene.load.normal_force, duration=kin.duration)
+    kw.update(overrides)
+    if kw["drive_velocity"] <= 0:
+        raise ParameterError("[kinematics].sliding_velocity", "a drive velocity > 0 m/s for stick-slip", kw["drive_velocity"])
+    return StickSlipParams(**kw)
+
+
+def contact_from_scene(scene, *, mu: float | None = None, n_springs: int | None = None) -> ContactSprings:
+    """The MDR spring row of the scene's contact at its normal load.
+
+    ``[geometry].profile`` sphere/cone/flat maps directly; ``rough`` uses the
+    sphere of ``[geometry].radius`` (the rough-surface stiffness enters the
+    chain through an explicit ``contact_stiffness`` instead).
+    """
+    geo = scene.geometry
+    kind = geo.profile if geo.profile in ("sphere", "cone", "flat") else "sphere"
+    E, G = scene.effective_modulus, scene.effective_shear_modulus
+    n = n_springs or max(3, min(scene.contact.springs, 2001))
+    x, g = profile_from_geometry(kind, max(scene.load.normal_force, 1e-6), E, n_springs=n, radius=geo.radius,
+                                 half_angle_deg=geo.half_angle_deg)
+    return ContactSprings(x, g, E, G, scene.load.friction_coefficient if mu is None else mu)
+
+
+def stick_slip_from_scene(scene, mu: float | None = None, contact_law: str = "rigid", *,
+                          law: FrictionLaw | None = None, contact_stiffness: float | None = None,
+                          method: str = "auto", **overrides):
+    """Chain entry point: stick-slip of the scene's body.
+
+    Parameters
+    ----------
+    scene : Scene
+    mu : float, optional
+        Friction coefficient (constant law); default ``[rates].mu`` if the
+        scene has it, else ``[load].friction_coefficient``.  Ignored if ``law`` is given.
+    contact_law : {"rigid", "mdr"}
+        Rigid contact during stick, or the MDR tangential stiffness of the
+        sticking springs (load dependent, so it vanishes with the load).
+    law : FrictionLaw, optional
+        Any friction law (e.g. :func:`load_friction_law` of a rates.json).
+    contact_stiffness : float, optional
+        Constant contact stiffness (N/m) instead of the MDR one.
+    method : str
+        Integrator (see :func:`stick_slip`).
+    **overrides
+        Fields of :class:`StickSlipParams`.
+    """
+    if contact_law not in ("rigid", "mdr"):
+        raise ParameterError("contact_law", "one of ['rigid', 'mdr']", contact_law)
+    if law is None:
+        if mu is None:
+            mu = scene.rates.mu if getattr(scene, "rates", None) is not None else scene.load.friction_coefficient
+        law = ConstantFriction(mu)
+    kc = None
+    if contact_stiffness is not None:
+        overrides["contact_stiffness"] = float(contact_stiffness)
+    elif contact_law == "mdr":
+        p0 = params_from_scene(scene, **overrides)
+        kc = contact_from_scene(scene, mu=law.mu_s).stiffness_table(max(p0.normal_force, 1e-9))
+    params = params_from_scene(scene, **overrides)
+    return stick_slip(params, law, method=method, contact_stiffness=kc)
+
+
+def oscillation_from_scene(scene, amplitude: float, *, frequency: float | None = None, cycles: int = 3,
+                           steps_per_cycle: int = 200, mu: float | None = None):
+    """Chain entry point: prescribed tangential oscillation of the scene's contact (micro-slip loops)."""
+    ts = scene.tribospectroscopy
+    f = frequency or (ts.frequency if ts is not None else 65e3)
+    p = OscillationParams(normal_force=scene.load.normal_force, amplitude=amplitude, frequency=f, cycles=cycles,
+                          steps_per_cycle=steps_per_cycle)
+    return oscillate(p, contact_from_scene(scene, mu=mu))
