@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import argparse
 import csv
-import math
 import sys
 import time
 from pathlib import Path
@@ -118,7 +117,7 @@ def rough_table(quick: bool) -> list[dict]:
     s_rng, e_rng = rng.spawn(2)
     h = generate_surface(n, dx, self_affine_psd(1e-6, 0.8, n * dx / 4, 8e-6 if not quick else 8e-6), s_rng)
     pressures = [1e5, 1e6, 1e7, 1e8] if not quick else [1e6, 1e7, 1e8]
-    t_mdr, mdr = _best_time(lambda: solve_rough(h, dx, E, pressures, method="mdr", realizations=16, rng=np.random.default_rng(1)), 3)
+    t_mdr, mdr = _best_time(lambda: solve_rough(h, dx, E, pressures, method="mdr", realizations=16, rng=np.random.default_rng(1)), 7)
     rows = []
     bems = {per: solve_rough(h, dx, E, pressures, method="bem", periodic=per) for per in (False, True)}
     for j, p in enumerate(pressures):

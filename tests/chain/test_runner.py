@@ -63,8 +63,8 @@ def test_rerun_reuses_cache_and_force_recomputes(tmp_path, calls):
 
     runner_mod.run_chain(_scene(), out, quiet=True, figures=False, force=["contact"])
     assert calls["contact"] == 2 and calls["topography"] == 1
-    # Same inputs -> same key, so downstream stages are still valid cache hits.
-    assert calls["macroscale"] == 1
+    # A recomputed stage invalidates what depends on it, and nothing else.
+    assert calls["macroscale"] == 2 and calls["tribospectroscopy"] == 1
 
 
 def test_changed_input_invalidates_only_downstream(tmp_path, calls):
@@ -73,7 +73,8 @@ def test_changed_input_invalidates_only_downstream(tmp_path, calls):
     out = tmp_path / "run"
     scene = _scene()
     runner_mod.run_chain(scene, out, quiet=True, figures=False)
-    changed = dataclasses.replace(scene, contact=dataclasses.replace(scene.contact, springs=scene.contact.springs + 1))
+    # [roughness] is read by contact only (macroscale depends on contact; topography and tribospectroscopy do not).
+    changed = dataclasses.replace(scene, roughness=dataclasses.replace(scene.roughness, realizations=scene.roughness.realizations + 1))
     runner_mod.run_chain(changed, out, quiet=True, figures=False)
     assert calls["topography"] == 1 and calls["tribospectroscopy"] == 1
     assert calls["contact"] == 2 and calls["macroscale"] == 2

@@ -6,6 +6,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from tribolmp.models.contact import reference as ref
 from tribolmp.models.contact.mdr import TangentialMDR, axisymmetric_profile
@@ -92,3 +94,19 @@ def test_mindlin_dissipation_closed_form():
     # Small amplitudes: W = mu F_N u*^3 / (2 u_s^2) ... leading term of the series, i.e. W ~ u*^3.
     w1, w2 = (ref.mindlin_dissipation(f * US, D, R, MU, E, G) for f in (1e-3, 2e-3))
     assert w2 / w1 == pytest.approx(8.0, rel=1e-2)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(st.floats(-0.2, 1.5), st.floats(-2.0, 2.0)), min_size=1, max_size=30))
+def test_any_history_respects_coulomb(history):
+    # Invariants of the per-spring model for arbitrary quasi-static histories:
+    # the normal force is that of the row, |F_x| <= mu F_n, and sticking springs add stiffness only.
+    from tribolmp.models.contact.mdr import normal_force
+
+    x, g = axisymmetric_profile("sphere", 201, 1.5 * A, radius=R)
+    m = TangentialMDR(x, g, E, G, MU)
+    for fd, fu in history:
+        Fn, Fx = m.step(fd * D, fu * US)
+        assert Fn == pytest.approx(normal_force(x, g, fd * D, E), rel=1e-12, abs=1e-300)
+        assert abs(Fx) <= MU * Fn * (1 + 1e-12) + 1e-300
+        assert 0.0 <= m.stiffness_x <= G * 2 * math.sqrt(R * max(fd * D, 0.0)) * (1 + 1e-12) + 1e-300

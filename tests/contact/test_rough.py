@@ -109,7 +109,7 @@ def test_load_closing_the_whole_surface(rng):
     L = 32 * DX
     res = stiffness_vs_load(x, g, 1e11, [5e10])
     # A closed row: every spring in contact, stiffness E* L1D exactly.
-    assert np.all(res.closed_fraction == 1.0)
+    assert np.all(res.closed_realizations == 1.0)
     assert res.stiffness[0] == pytest.approx(1e11 * L, rel=1e-12)
     bem = solve_rough(h, DX, 1e11, [5e10], method="bem", periodic=True).rows[0]
     assert bem["area_fraction"] == 1.0 and math.isinf(bem["stiffness"])
@@ -141,3 +141,44 @@ def test_scene_adapter_runs_mdr_and_bem():
     # the two methods agree within the documented +-30 % band at these loads (ratio measured 0.9-1.3)
     for rm, rb in zip(mdr.rows, bem.rows):
         assert 0.5 < rm["stiffness"] / rb["stiffness"] < 2.0
+
+
+def test_profiles_from_a_line_scan(rng):
+    # A 1D height map (e.g. a dim = 1 topography) is a line scan of an isotropic surface:
+    # the inverse Abel transform of its PSD must give the same MDR statistics as the 2D map.
+    h = generate_surface(512, DX, PSD, rng)
+    x2, g2 = mdr_profiles_from_heightmap(h, DX, 100, rng)
+    slope2 = np.sqrt(np.mean((np.diff(g2, axis=1) / DX) ** 2))
+    rms2 = np.sqrt(np.mean(g2.var(axis=1)))
+    slopes, rmss = [], []
+    for row in range(0, 512, 128):
+        x1, g1 = mdr_profiles_from_heightmap(h[row], DX, 50, rng)
+        assert x1.shape == (512,) and np.allclose(g1.min(axis=1), 0.0)
+        slopes.append(np.sqrt(np.mean((np.diff(g1, axis=1) / DX) ** 2)))
+        rmss.append(np.sqrt(np.mean(g1.var(axis=1))))
+    # measured: slope +13 %, rms +5 % (one line carries ~1/n of the 2D information and the
+    # log-binned periodogram is differentiated); 20 % / 15 % bands
+    assert np.mean(slopes) == pytest.approx(slope2, rel=0.2)
+    assert np.mean(rmss) == pytest.approx(rms2, rel=0.15)
+    with pytest.raises(ParameterError, match="surface"):
+        mdr_profiles_from_heightmap(np.full(8, 1.0), DX, 2, rng)
+
+
+def test_params_from_scene():
+    import dataclasses
+
+    from tribolmp.models.contact import params_from_scene, solve
+    from tribolmp.scene import default_scene
+
+    scene = default_scene()
+    p = params_from_scene(scene)
+    assert isinstance(p, RoughParams)
+    assert p.modulus == pytest.approx(scene.effective_modulus) and p.pressures == tuple(scene.load.pressures)
+    sphere = dataclasses.replace(scene, geometry=dataclasses.replace(scene.geometry, profile="sphere"))
+    ap = params_from_scene(sphere)
+    res = solve(ap)
+    assert res.force == pytest.approx(scene.load.normal_force, rel=1e-6)
+    assert res.contact_radius == pytest.approx(math.sqrt(scene.geometry.radius * float(ref.hertz_indentation(scene.load.normal_force, scene.geometry.radius, scene.effective_modulus))), rel=1e-6)
+    zero = dataclasses.replace(sphere, load=dataclasses.replace(scene.load, normal_force=0.0))
+    with pytest.raises(ParameterError, match="normal_force"):
+        params_from_scene(zero)

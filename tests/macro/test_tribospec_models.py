@@ -32,7 +32,7 @@ def test_pinning_shape_limits_and_physics_notes():
 
 def test_fast_table_matches_exact():
     s = np.geomspace(1e-5, 1e6, 3001)
-    # table of s*G(s) with 2400 cubic nodes in ln s: interpolation error ~h^4 ~ 1e-10
+    # table of s*G(s) with 1600 cubic nodes in ln s: interpolation error ~h^4 ~ 1e-9
     assert np.max(np.abs(M.pinning_shape_fast(s) / M.pinning_shape(s) - 1)) < 1e-8
 
 

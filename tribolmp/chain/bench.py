@@ -57,6 +57,25 @@ def run_benchmark(script: Path, *, quick: bool = True, timeout: float = 900.0) -
     return {"script": script.name, "returncode": rc, "time_s": time.perf_counter() - t0, "stdout": out, "error": tail if rc else ""}
 
 
+def _owners(scripts: list[Path], results_dir: Path | None) -> dict[str, list[Path]]:
+    """CSV files of each benchmark: named after its stem, else after its model (the stem's first word).
+
+    ``contact_speed_vs_error.py`` owns ``contact_speed_vs_error*.csv`` and also
+    ``contact_rough_mdr_vs_bem.csv`` (model ``contact``) when no other script's
+    stem is a prefix of that file.
+    """
+    out: dict[str, list[Path]] = {s.stem: [] for s in scripts}
+    if not results_dir or not results_dir.is_dir():
+        return out
+    for p in results_dir.glob("*.csv"):
+        exact = [s.stem for s in scripts if p.stem == s.stem or p.stem.startswith(s.stem + "_")]
+        model = [s.stem for s in scripts if p.stem.split("_")[0] == s.stem.split("_")[0]]
+        owner = max(exact, key=len) if exact else (model[0] if len(model) == 1 else None)
+        if owner is not None:
+            out[owner].append(p)
+    return out
+
+
 def _short(cell: str) -> str:
     """4 significant digits for numbers in the markdown table (the CSV keeps full precision)."""
     try:
@@ -118,21 +137,13 @@ def gather(
     entries = []
     for i, script in enumerate(scripts, 1):
         entry: dict[str, Any] = {"name": script.stem, "ran": False, "returncode": None, "time_s": None, "error": ""}
-        started = time.time()
         if run:
             print(f"[{i}/{len(scripts)}] running {script.name} {'--quick' if quick else ''}", file=log, flush=True)
             r = run_benchmark(script, quick=quick, timeout=timeout)
             entry.update(ran=True, returncode=r["returncode"], time_s=r["time_s"], error=r["error"])
-        # A benchmark's CSVs are those named after it (exact stem or stem_*), newest first.
-        csvs = []
-        if results_dir and results_dir.is_dir():
-            csvs = sorted(
-                (p for p in results_dir.glob("*.csv") if p.stem == script.stem or p.stem.startswith(script.stem + "_")),
-                key=lambda p: p.stat().st_mtime,
-                reverse=True,
-            )
+        owned = _owners(scripts, results_dir)
+        csvs = sorted(owned.get(script.stem, []), key=lambda p: p.stat().st_mtime, reverse=True)
         entry["csv"] = [str(p) for p in csvs]
-        entry["fresh"] = bool(csvs) and run and all(p.stat().st_mtime >= started - 1 for p in csvs[:1])
         entry["tables"] = []
         for p in csvs:
             header, rows = _read_csv(p)

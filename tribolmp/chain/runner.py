@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import sys
 import time
+import uuid
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -208,7 +209,9 @@ def run_chain(
         inputs = {
             "sections": {s: scene_dict.get(s) for s in sp.sections},
             "options": sp.options,
-            "upstream": {n: run.result(n).key for n in sp.needs},
+            # The identity of an upstream *result* (not only of its inputs): a forced or otherwise
+            # recomputed upstream stage invalidates everything downstream of it.
+            "upstream": {n: f"{run.result(n).key}:{run.result(n).record.get('output_id', '')}" for n in sp.needs},
             "seed": seed,
         }
         key = cache.key(sp.name, inputs)
@@ -256,7 +259,8 @@ def run_chain(
         else:
             dt = time.perf_counter() - t0
             record = {
-                "values": output.values,
+                # None marks "not applicable" inside a stage: leave such keys out of the record.
+                "values": {k: v for k, v in output.values.items() if v is not None},
                 "units": output.units,
                 "files": output.files,
                 "method": output.method,
@@ -268,6 +272,7 @@ def run_chain(
                 "inputs_hash": hash_inputs(inputs),
                 "provenance": output.provenance,
                 "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+                "output_id": uuid.uuid4().hex,
             }
             committed = cache.commit(sp.name, key, record)
             run.entries[sp.name] = StageEntry(sp.name, True, sp.reason, dt, "computed", key, committed)

@@ -124,6 +124,45 @@ def _stage(name: str):
 # ---------------------------------------------------------------- nanoscale
 
 
+class _watch_progress:
+    """Report a LAMMPS run's progress from the simulated time in the last line of ``friction.csv``.
+
+    A daemon thread reads only the file's tail every ``interval`` s, so it costs
+    nothing measurable and never touches the LAMMPS session.
+    """
+
+    def __init__(self, path: Path, duration: float, report: Callable[..., None], interval: float = 2.0):
+        import threading
+
+        self.path, self.duration, self.report, self.interval = path, duration, report, interval
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+
+    def _last_time(self) -> float | None:
+        try:
+            with open(self.path, "rb") as fh:
+                fh.seek(0, 2)
+                fh.seek(max(0, fh.tell() - 256))
+                line = fh.read().decode(errors="ignore").strip().splitlines()[-1]
+            return float(line.split(",")[0])
+        except (OSError, ValueError, IndexError):
+            return None
+
+    def _run(self) -> None:
+        while not self._stop.wait(self.interval):
+            t = self._last_time()
+            if t is not None and self.duration > 0:
+                self.report(t / self.duration, f"simulated {t * 1e9:.2f} of {self.duration * 1e9:.2f} ns")
+
+    def __enter__(self):
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        self._stop.set()
+        self._thread.join(timeout=5)
+
+
 @_stage("nanoscale")
 def nanoscale(ctx: StageContext) -> StageOutput:
     """LAMMPS MCA friction run -> ``rates.json`` (plus friction.csv, trajectory, meta.json)."""
@@ -136,7 +175,8 @@ def nanoscale(ctx: StageContext) -> StageOutput:
     out = ctx.workdir / "mca"
     # An interrupted run left restart files in the (kept) partial folder: continue from them.
     resume = out.is_dir() and any(out.iterdir())
-    res = mca.run_mca(params, out, seed=lammps_seed(ctx.rng), resume=resume, np=ctx.scene.nanoscale.ranks)
+    with _watch_progress(out / "friction.csv", params.duration, ctx.progress):
+        res = mca.run_mca(params, out, seed=lammps_seed(ctx.rng), resume=resume, np=ctx.scene.nanoscale.ranks)
     rates_path = out / "rates.json"
     if not rates_path.exists():
         raise RuntimeError(f"run_mca finished without writing {rates_path.name}")
@@ -178,8 +218,8 @@ def topography(ctx: StageContext) -> StageOutput:
         files["surface_meta"] = "surface.json"
     if (ctx.workdir / "rates.json").exists():
         files["rates"] = "rates.json"
-    values = _scalars(res)
-    values.pop("status", None)
+    # Bookkeeping fields (method, message, wall time, counters) go to the record, not the numbers.
+    values = {k: v for k, v in _scalars(res).items() if k not in ("status", "method", "message", "time_s", "nit", "history")}
     values["rates_source"] = rates_src or "[topography]"
     values["params"] = _scalars(dict(vars(params)))
     return StageOutput(

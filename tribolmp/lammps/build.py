@@ -126,7 +126,7 @@ def self_affine_profile(n: int | tuple[int, int], rms: float, hurst: float, rng:
     with np.errstate(divide="ignore"):
         # amplitude ~ sqrt(PSD); the mean (q = 0) is removed
         amp = np.where(q > 0, q ** (-(len(shape) + 2 * hurst) / 2.0), 0.0)
-    h = np.fft.irfftn(spec * amp, s=shape)
+    h = np.fft.irfftn(spec * amp, s=shape, axes=tuple(range(len(shape))))
     std = h.std()
     if rms == 0.0 or std == 0.0:
         return np.zeros(shape)
@@ -164,6 +164,7 @@ def build_system(
     rng: np.random.Generator,
     width: float | None = None,
     hurst: float = 0.8,
+    contact_fraction: float = 0.1,
 ) -> MCAGeometry:
     """Build base / lower body / upper body / slider with rough interface surfaces.
 
@@ -187,6 +188,9 @@ def build_system(
         two cubic cells.
     hurst : float
         Hurst exponent of the surfaces.
+    contact_fraction : float
+        Fraction of surface columns (bins of width d) initially in contact;
+        0 places the highest asperities just touching.
 
     Returns
     -------
@@ -241,10 +245,16 @@ def build_system(
     upper = upper[keep]
     p = upper.positions
     mol_up = np.where(p[:, 1] > slider_bottom, MOL_SLIDER, MOL_UPPER)
-    # lowest upper-body point one diameter above the highest lower-body point
-    shift = lower.positions[:, 1].max() + d - p[:, 1].min()
+    # Bring the surfaces together so that a fraction `contact_fraction` of the surface columns touch
+    # (separation of their outermost automata <= d); upper-body automata that would then sit closer
+    # than one diameter to a lower-body automaton are removed (the asperity tips are trimmed).
+    # Without this the slider spends most of a short run approaching the first, highest asperity.
+    shift = _contact_shift(lower.positions[mol_lo == MOL_LOWER], p[mol_up == MOL_UPPER], d, lx, lz, dim, contact_fraction)
     p[:, 1] += shift
     upper.positions = p
+    trim = _too_close(lower.positions[mol_lo == MOL_LOWER], p, d, lx, lz, dim) & (mol_up == MOL_UPPER)
+    upper = upper[~trim]
+    mol_up = mol_up[~trim]
 
     atoms = lower + upper
     mol = np.concatenate([mol_lo, mol_up])
@@ -266,6 +276,45 @@ def build_system(
     bonds = _neighbour_bonds(pos, mol, box, d, dim)
     interface = 0.5 * (y_mean_lo + (slider_bottom - body_height + shift))
     return MCAGeometry(atoms=atoms, bonds=bonds, dim=dim, d=d, box=box, interface_y=float(interface))
+
+
+def _columns(pos: np.ndarray, d: float, lx: float, lz: float, dim: int) -> np.ndarray:
+    ix = np.floor(pos[:, 0] / d).astype(int) % max(1, int(round(lx / d)))
+    if dim == 2:
+        return ix
+    iz = np.floor(pos[:, 2] / d).astype(int) % max(1, int(round(lz / d)))
+    return ix * 100000 + iz
+
+
+def _contact_shift(lo: np.ndarray, up: np.ndarray, d: float, lx: float, lz: float, dim: int, frac: float) -> float:
+    """Vertical shift of the upper body that closes the gap in a fraction ``frac`` of the columns."""
+    base = lo[:, 1].max() + d - up[:, 1].min()  # highest asperities just touching
+    if frac <= 0.0:
+        return float(base)
+    clo, cup = _columns(lo, d, lx, lz, dim), _columns(up, d, lx, lz, dim)
+    gaps = []
+    for c in np.intersect1d(clo, cup):
+        gaps.append(up[cup == c, 1].min() - lo[clo == c, 1].max() - d)
+    if not gaps:
+        return float(base)
+    return float(-np.quantile(np.asarray(gaps), min(frac, 1.0)))
+
+
+def _too_close(lo: np.ndarray, pos: np.ndarray, d: float, lx: float, lz: float, dim: int) -> np.ndarray:
+    """Mask of ``pos`` within 0.99 d of any point of ``lo`` (periodic in x, and z in 3D)."""
+    from scipy.spatial import cKDTree
+
+    def wrap(a):
+        b = a.copy()
+        b[:, 0] = np.mod(b[:, 0], lx)
+        b[:, 1] += 1e6
+        b[:, 2] = np.mod(b[:, 2], lz) if dim == 3 else 0.0
+        return b
+
+    box = np.array([lx, 1e12, lz if dim == 3 else 1e12])
+    tree = cKDTree(wrap(lo), boxsize=box)
+    dist, _ = tree.query(wrap(pos), k=1)
+    return dist < 0.99 * d
 
 
 def build_block(*, dim: int, d: float, n: int) -> MCAGeometry:

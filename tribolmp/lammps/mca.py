@@ -201,6 +201,9 @@ def deck_variables(params: MCAParams, *, data: str | Path, out: str | Path, seed
     fn = params.pressure / 1e6 * area_nm2  # pressure unit 1e6 Pa x nm^2 = 1e-12 N
     d_nm = params.automaton_diameter * 1e9
     rot = params.bond_style == "bpm/rotational"
+    every = _steps(params.print_interval, dt_s)
+    # restarts on whole averaging windows of friction.csv, so that a resumed run repeats them exactly
+    restart_every = max(1, round(_steps(params.restart_interval, dt_s) / every)) * every
     return {
         "data": str(data),
         "out": str(out),
@@ -213,8 +216,8 @@ def deck_variables(params: MCAParams, *, data: str | Path, out: str | Path, seed
         "ramp_steps": _steps(params.ramp_time, dt_s) if params.ramp_time > 0 else 1,
         "thermo_every": _steps(params.print_interval, dt_s) * 10,
         "dump_every": _steps(params.dump_interval, dt_s),
-        "print_every": _steps(params.print_interval, dt_s),
-        "restart_every": _steps(params.restart_interval, dt_s),
+        "print_every": every,
+        "restart_every": restart_every,
         "V": params.sliding_velocity,
         "FN": f"{fn:.10g}",
         "approach_v": params.approach_velocity,
@@ -353,7 +356,7 @@ def _prune_restarts(out: Path, keep: int = 2) -> None:
 
 
 def _truncate_outputs(out: Path, step: int, dt_s: float) -> None:
-    """Drop friction.csv rows and trajectory frames written after ``step`` (they are re-run)."""
+    """Drop friction.csv rows and trajectory frames from ``step`` on (the resumed run writes them again)."""
     csv = out / "friction.csv"
     if csv.exists():
         lines = csv.read_text().splitlines()
@@ -366,6 +369,37 @@ def _truncate_outputs(out: Path, step: int, dt_s: float) -> None:
         frames = text.split("ITEM: TIMESTEP\n")
         kept = [f for f in frames[1:] if int(f.split("\n", 1)[0]) <= step]
         traj.write_text("".join("ITEM: TIMESTEP\n" + f for f in kept))
+
+
+def _dedupe_outputs(out: Path) -> None:
+    """Drop repeated friction.csv rows and dump frames, keeping the first of each.
+
+    LAMMPS's ``fix print`` and ``dump`` also write on the first step of every ``run`` command, so the
+    step that ends one chunk (or the restart step of a resumed run) is written twice; the first copy
+    is the one of the uninterrupted run.
+    """
+    csv = out / "friction.csv"
+    if csv.exists():
+        lines = csv.read_text().splitlines()
+        seen: set[str] = set()
+        kept = [lines[0]]
+        for ln in lines[1:]:
+            key = ln.split(",", 1)[0]
+            if ln and key not in seen:
+                seen.add(key)
+                kept.append(ln)
+        csv.write_text("\n".join(kept) + "\n")
+    traj = out / "traj.lammpstrj"
+    if traj.exists():
+        frames = traj.read_text().split("ITEM: TIMESTEP\n")[1:]
+        steps = [f.split("\n", 1)[0] for f in frames]
+        if len(set(steps)) != len(steps):
+            seen = set()
+            with traj.open("w") as fh:
+                for st, fr in zip(steps, frames, strict=True):
+                    if st not in seen:
+                        seen.add(st)
+                        fh.write("ITEM: TIMESTEP\n" + fr)
 
 
 # ---------------------------------------------------------------------- running
@@ -401,6 +435,7 @@ def _run_lammps(variables: dict[str, Any], out: Path, *, resume: bool) -> dict[s
         if found:
             start_step, path = found[-1]
             variables["restart"] = str(path)
+            variables["resume"] = 1
     t0 = time.perf_counter()
     with LammpsSession(log=None, variables=variables) as lmp:
         lmp.require_styles()
@@ -432,6 +467,8 @@ def _run_lammps(variables: dict[str, Any], out: Path, *, resume: bool) -> dict[s
                 _prune_restarts(out)
         nprocs = lmp.nprocs
         bonds = int(lmp.thermo("bonds"))
+    if is_root:
+        _dedupe_outputs(out)
     return {
         "steps_run": steps - start_step,
         "start_step": start_step,

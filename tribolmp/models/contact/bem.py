@@ -205,6 +205,9 @@ def solve_bem(
     else:
         p = np.full(h.shape, pressure)
     t = np.zeros_like(p)
+    # Penetrations below round-off of the height range do not count as overlaps
+    # (otherwise the "no overlap" convergence condition could never be met).
+    gap_tol = 1e-12 * max(float(np.ptp(h)), float(np.abs(h).max()), 1e-300)
     G_old = 1.0
     delta = 0.0
     converged = False
@@ -230,7 +233,7 @@ def solve_bem(
         p_old = p
         p = p - tau * t
         np.maximum(p, 0.0, out=p)
-        overlap = (p == 0) & (g < 0)
+        overlap = (p == 0) & (g < -gap_tol)
         if overlap.any():
             delta = 0.0
             p[overlap] -= tau * g[overlap]

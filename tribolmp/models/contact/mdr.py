@@ -49,6 +49,7 @@ __all__ = [
     "normal_stiffness",
     "contact_length",
     "spring_widths",
+    "contact_lengths",
     "contact_radius",
     "AxisymmetricMDR",
     "TangentialMDR",
@@ -226,9 +227,18 @@ def spring_widths(f: np.ndarray, dx: float) -> np.ndarray:
     return _edge_weights(f, dx, lengths=False)
 
 
-def _contact_lengths(f: np.ndarray, dx: float) -> np.ndarray:
-    """Length (m) of the contact owned by each spring (derivative of the force / E*)."""
+def contact_lengths(f: np.ndarray, dx: float) -> np.ndarray:
+    """Length (m) of the contact owned by each spring for the compression ``f = d - g`` (m).
+
+    Equals :func:`spring_widths` except in the cells cut by the contact edge
+    (there the whole sub-grid length ``t``, not ``t/2``); the sum is the
+    contact length, i.e. ``dF/dd / E*``.  :class:`TangentialMDR` gives each
+    spring the tangential stiffness ``G*`` times this length.
+    """
     return _edge_weights(f, dx, lengths=True)
+
+
+_contact_lengths = contact_lengths  # kept: used by tribolmp.models.macro
 
 
 def _edge_weights(f: np.ndarray, dx: float, lengths: bool) -> np.ndarray:

@@ -30,7 +30,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from ...errors import NoContactError, ParameterError
+from ...errors import ParameterError
 from ..base import Result, check_int, check_positive
 
 __all__ = [
@@ -102,8 +102,8 @@ def check_heightmap(heights, pixel_size=None) -> np.ndarray:
         raise ParameterError("surface", "at least 4 points per side", f"shape {h.shape}")
     if not np.issubdtype(h.dtype, np.number) or np.iscomplexobj(h):
         raise ParameterError("surface", "real numeric heights", str(h.dtype))
-    h = h.astype(float)
-    if not np.all(np.isfinite(h)):
+    h = np.asarray(h, dtype=float)
+    if not np.isfinite(h).all():
         raise ParameterError("surface", "finite heights", f"{int(np.count_nonzero(~np.isfinite(h)))} NaN/inf values")
     if pixel_size is not None:
         check_positive("pixel_size", pixel_size, "m")
@@ -120,18 +120,29 @@ def measure_psd_2d(heights, pixel_size: float) -> tuple[np.ndarray, np.ndarray]:
     C2D : ndarray
         PSD (m^4), with ``sum_q C2D dq^2 = <(h - <h>)^2>`` over the full grid.
     """
-    h = check_heightmap(heights, pixel_size)
+    return _measure_psd_2d(check_heightmap(heights, pixel_size), pixel_size)
+
+
+def _measure_psd_2d(h: np.ndarray, pixel_size: float) -> tuple[np.ndarray, np.ndarray]:
+    from scipy import fft
+
     ny, nx = h.shape
     dqx, dqy = 2 * math.pi / (nx * pixel_size), 2 * math.pi / (ny * pixel_size)
-    H = np.fft.fft2(h - h.mean())
-    C = np.abs(H) ** 2 / (nx * ny) ** 2 / (dqx * dqy)
-    qx = 2 * math.pi * np.fft.fftfreq(nx, d=pixel_size)
+    # Real FFT: the half plane, each column except 0 (and Nyquist) standing for two wave vectors.
+    H = fft.rfft2(h - h.mean(), workers=2)
+    C = (H.real**2 + H.imag**2) / (nx * ny) ** 2 / (dqx * dqy)
+    qx = 2 * math.pi * np.fft.rfftfreq(nx, d=pixel_size)
     qy = 2 * math.pi * np.fft.fftfreq(ny, d=pixel_size)
     q = np.hypot(qy[:, None], qx[None, :])
+    mult = np.full(qx.size, 2.0)
+    mult[0] = 1.0
+    if nx % 2 == 0:
+        mult[-1] = 1.0
+    wgt = np.broadcast_to(mult, C.shape).ravel()
     dq = min(dqx, dqy)
     k = np.rint(q / dq).astype(int).ravel()
-    sums = np.bincount(k, weights=C.ravel())
-    counts = np.bincount(k)
+    sums = np.bincount(k, weights=C.ravel() * wgt)
+    counts = np.bincount(k, weights=wgt)
     kk = np.nonzero(counts)[0]
     kk = kk[kk > 0]
     return kk * dq, sums[kk] / counts[kk]
@@ -199,21 +210,79 @@ def mdr_profiles_from_psd(
 
 
 def mdr_profiles_from_heightmap(heights, pixel_size: float, n_realizations: int, rng: np.random.Generator):
-    """Ensemble of 1D MDR profiles whose spectrum is measured from a 2D height map.
+    """Ensemble of 1D MDR profiles whose spectrum is measured from a height map.
 
-    The radially averaged ``C2D`` of the map is turned into ``C1D = pi q C2D``
+    2D map: the radially averaged ``C2D`` is turned into ``C1D = pi q C2D``
     and sampled on a line of the map's side ``L1D = n dx`` with the same
-    spacing (``n`` the larger side).  Returns ``(x, g)`` as
-    :func:`mdr_profiles_from_psd`.
+    spacing (``n`` the larger side).
+
+    1D map (a line scan of an isotropic surface, e.g. a ``dim = 1``
+    topography): its spectrum is the Abel projection of ``C2D``,
+    ``C_line(q) = 2 int_q^inf C2D(k) k / sqrt(k^2 - q^2) dk``; the inverse
+    Abel transform gives ``C1D = pi q C2D = -q int_0^T C_line'(q cosh t) dt``
+    (``T = acosh(q_max/q)``), evaluated on the log-binned periodogram.
+
+    Returns ``(x, g)`` as :func:`mdr_profiles_from_psd`.
     """
+    h = np.asarray(heights)
+    if h.ndim == 1:
+        return _profiles_from_line_scan(h, pixel_size, n_realizations, rng)
     h = check_heightmap(heights, pixel_size)
-    q, C2 = measure_psd_2d(h, pixel_size)
+    q, C2 = _measure_psd_2d(h, pixel_size)
     C1 = psd_1d_from_2d(q, C2)
 
     def c1d(qq):
         return np.interp(qq, q, C1, left=0.0, right=0.0)
 
     return _profiles_from_c1d(c1d, max(h.shape), float(pixel_size), n_realizations, rng)
+
+
+def _profiles_from_line_scan(h, pixel_size, n_realizations, rng):
+    """MDR ensemble from a 1D line scan through the inverse Abel transform of its PSD."""
+    h = np.asarray(h)
+    if h.size < 16 or not np.issubdtype(h.dtype, np.number) or np.iscomplexobj(h):
+        raise ParameterError("surface", "a 2D height map or a real 1D line scan of >= 16 points", f"shape {h.shape}")
+    h = np.asarray(h, dtype=float)
+    if not np.isfinite(h).all():
+        raise ParameterError("surface", "finite heights", f"{int(np.count_nonzero(~np.isfinite(h)))} NaN/inf values")
+    dx = check_positive("pixel_size", pixel_size, "m")
+    n = h.size
+    dq = 2 * math.pi / (n * dx)
+    H = np.fft.rfft(h - h.mean())
+    k = np.arange(1, H.size)
+    # two-sided line PSD: sum over +-q of C dq = <h^2>
+    C = (np.abs(H[1:]) ** 2) / (n * n * dq)
+    if n % 2 == 0:
+        C[-1] /= 2.0
+    # log-binned periodogram (about 8 bins per decade) -> smooth log-log interpolant
+    edges = np.unique(np.round(np.geomspace(1, k[-1] + 1, 8 * max(1, int(np.log10(k[-1]) + 1)) + 1)).astype(int))
+    idx = np.clip(np.searchsorted(edges, k, side="right") - 1, 0, edges.size - 2)
+    cnt = np.bincount(idx, minlength=edges.size - 1)
+    Cb = np.bincount(idx, weights=C, minlength=edges.size - 1)
+    kb = np.bincount(idx, weights=np.log(k), minlength=edges.size - 1)
+    ok = (cnt > 0) & (Cb > 0)
+    lq = kb[ok] / cnt[ok] + math.log(dq)
+    lC = np.log(Cb[ok] / cnt[ok])
+    if lq.size < 2:
+        raise ParameterError("surface", "a line scan with a resolvable spectrum", "a flat profile")
+    slope = np.gradient(lC, lq) if lq.size > 2 else np.full_like(lq, (lC[1] - lC[0]) / (lq[1] - lq[0]))
+    qmax = dq * k[-1]
+    t_gl, w_gl = np.polynomial.legendre.leggauss(64)
+
+    def c1d(qq):
+        qq = np.asarray(qq, dtype=float)
+        out = np.zeros_like(qq)
+        m = (qq > 0) & (qq < qmax)
+        qm = qq[m]
+        T = np.arccosh(qmax / qm)
+        tt = 0.5 * (t_gl[None, :] + 1.0) * T[:, None]
+        kk = np.log(qm[:, None] * np.cosh(tt))
+        Ck = np.exp(np.interp(kk, lq, lC))
+        dC = Ck * np.interp(kk, lq, slope) / np.exp(kk)  # C_line'(k) from the log-log interpolant
+        out[m] = -qm * 0.5 * T * np.sum(dC * w_gl[None, :], axis=1)
+        return np.maximum(out, 0.0)
+
+    return _profiles_from_c1d(c1d, n, dx, n_realizations, rng)
 
 
 def _forces(g: np.ndarray, d: np.ndarray, dx: float) -> tuple[np.ndarray, np.ndarray]:
@@ -296,11 +365,14 @@ def stiffness_vs_load(
         (median dF/dd, N/m), ``stiffness_q10``/``stiffness_q90``,
         ``approach`` (median indentation from first touch of each profile, m)
         with ``approach_q10``/``approach_q90``, and the per-realisation arrays
-        ``stiffness_all``/``approach_all`` (R x P).  No contact area.
+        ``stiffness_all``/``approach_all`` (R x P), and
+        ``closed_realizations`` (fraction of the realisations whose whole
+        row is in contact: a count of profiles, not an area).  No contact area.
     """
     t0 = time.perf_counter()
     x = np.asarray(x, dtype=float)
-    g = np.atleast_2d(np.asarray(g, dtype=float))
+    g = np.asarray(g, dtype=float)
+    g = g[None, :] if g.ndim == 1 else g
     if x.ndim != 1 or g.shape[1] != x.size or x.size < 2:
         raise ParameterError("x, g", "x of shape (n,) and g of shape (R, n)", f"shapes {x.shape}, {g.shape}")
     E = check_positive("modulus", E_star, "Pa")
@@ -317,17 +389,18 @@ def stiffness_vs_load(
         _, ln = _forces(g, d, dx)
         K[:, j] = E * ln
         D[:, j] = d
-    q = lambda a, v: np.quantile(a, v, axis=0)  # noqa: E731
+    kq = np.quantile(K, [0.1, 0.5, 0.9], axis=0)
+    dq = np.quantile(D, [0.1, 0.5, 0.9], axis=0)
     res = Result(
         pressure=P,
         force=P * A,
-        stiffness=np.median(K, axis=0),
-        stiffness_q10=q(K, 0.1),
-        stiffness_q90=q(K, 0.9),
-        approach=np.median(D, axis=0),
-        approach_q10=q(D, 0.1),
-        approach_q90=q(D, 0.9),
-        closed_fraction=np.mean(np.all(D[:, :, None] >= g[:, None, :], axis=2), axis=0),
+        stiffness=kq[1],
+        stiffness_q10=kq[0],
+        stiffness_q90=kq[2],
+        approach=dq[1],
+        approach_q10=dq[0],
+        approach_q90=dq[2],
+        closed_realizations=np.mean(np.all(D[:, :, None] >= g[:, None, :], axis=2), axis=0),
         stiffness_all=K,
         approach_all=D,
         nominal_area=A,
@@ -337,7 +410,7 @@ def stiffness_vs_load(
         units={
             "pressure": "Pa", "force": "N", "stiffness": "N/m", "stiffness_q10": "N/m", "stiffness_q90": "N/m",
             "approach": "m", "approach_q10": "m", "approach_q90": "m", "nominal_area": "m^2", "line_length": "m",
-            "closed_fraction": "1",
+            "closed_realizations": "1",
         },
     )
     res["time_s"] = time.perf_counter() - t0

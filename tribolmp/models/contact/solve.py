@@ -481,13 +481,14 @@ def params_from_scene(scene):
     if geo.profile == "rough":
         return rough_params_from_scene(scene)
     springs = getattr(getattr(scene, "contact", None), "springs", 2001)
+    if not scene.load.normal_force > 0:
+        raise ParameterError("[load].normal_force", f"a force > 0 N for a {geo.profile} contact", scene.load.normal_force)
     return AxisymmetricParams(
         profile=geo.profile,
         modulus=scene.effective_modulus,
         radius=geo.radius,
         half_angle_deg=geo.half_angle_deg,
-        normal_force=scene.load.normal_force if scene.load.normal_force > 0 else None,
-        indentation=None if scene.load.normal_force > 0 else 1e-9,
+        normal_force=scene.load.normal_force,
         springs=max(9, int(springs)),
     )
 

@@ -151,6 +151,6 @@ def _brute(p: DriftParams, contact):
 def _averaged(p: DriftParams, contact):
     q, k = contact.springs(p.normal_force)
     avg = AveragedContact(q, k, contact.mu, p.amplitude)
-    t = np.linspace(0.0, p.duration, p.slow_steps + 1)[1:]
+    t = np.linspace(0.0, p.duration, p.slow_steps + 1)  # includes the initial state
     f = np.array([2.0 * avg.step(p.velocity * ti) for ti in t])
     return t, f, p.slow_steps

@@ -87,8 +87,11 @@ def mindlin_loop(u, u_amp: float, mu_n: float, u_slip: float, branch: str):
 
 
 def mindlin_dissipation(u_amp: float, mu_n: float, u_slip: float) -> float:
-    """Energy (J) dissipated per cycle of the steady loop (area between the two branches)."""
+    """Energy (J) dissipated per cycle of the steady loop: the integral of F du around it.
+
+    The reloading branch (u increasing) lies above the unloading one.
+    """
     from scipy.integrate import quad
 
-    return quad(lambda u: float(mindlin_loop(u, u_amp, mu_n, u_slip, "unload") - mindlin_loop(u, u_amp, mu_n, u_slip, "reload")),
+    return quad(lambda u: float(mindlin_loop(u, u_amp, mu_n, u_slip, "reload") - mindlin_loop(u, u_amp, mu_n, u_slip, "unload")),
                 -u_amp, u_amp, epsabs=0, epsrel=1e-12)[0]

@@ -100,7 +100,7 @@ def _h(c: np.ndarray) -> np.ndarray:
 
 
 @functools.lru_cache(maxsize=None)
-def _graded_nodes(n_panels: int = 48, order: int = 16) -> tuple[np.ndarray, np.ndarray]:
+def _graded_nodes(n_panels: int = 34, order: int = 16) -> tuple[np.ndarray, np.ndarray]:
     # Panels on phi in (0, pi/2] graded geometrically towards 0: the integrand
     # varies on the scale phi ~ 1/s, so every s from 1e-3 to 1e6 is resolved.
     x, w = np.polynomial.legendre.leggauss(order)
@@ -163,7 +163,7 @@ def pinning_shape_asymptote(s) -> np.ndarray:
 def _shape_spline():
     from scipy.interpolate import CubicSpline
 
-    ls = np.linspace(np.log(1e-4), np.log(1e5), 2400)
+    ls = np.linspace(np.log(1e-4), np.log(1e5), 1600)
     # interpolate s*G(s): bounded and smooth in ln s, tends to a constant
     return CubicSpline(ls, np.exp(ls) * pinning_shape(np.exp(ls)))
 

@@ -1,0 +1,70 @@
+"""Scene adapters and the ``tribospec simulate`` / ``macro oscillate`` commands."""
+
+import json
+
+import numpy as np
+import pytest
+
+from tests.conftest import assert_one_line_error
+from tests.macro.helpers import run_main
+from tribolmp.models import macro, tribospectroscopy as ts
+from tribolmp.scene import default_scene
+
+
+def test_params_from_scene_and_chain_entry_points():
+    scene = default_scene()
+    p = ts.params_from_scene(scene)
+    assert p.normal_force == pytest.approx(scene.load.normal_force / 2)  # two contacts share the load
+    assert p.model == scene.tribospectroscopy.model
+    r = ts.tribospec_from_scene(scene, contact_stiffness=1e7, model="stiffness", amplitudes=[0.0, 5e-8, 1e-6])
+    mu_n = scene.load.friction_coefficient * p.normal_force
+    assert r.force_N == pytest.approx(2 * mu_n * np.clip(1 - 1e7 * np.array([0, 5e-8, 1e-6]) / mu_n, 0, None), rel=1e-12)
+    assert r.length_m == pytest.approx(mu_n / 1e7)
+    sp = macro.params_from_scene(scene)
+    assert sp.mass == scene.kinematics.mass
+    res = macro.stick_slip_from_scene(scene, contact_law="mdr", law=macro.ConstantFriction(0.35, 0.3), duration=2e-3)
+    assert res.events[0]["from_phase"] == "stick"
+
+
+def test_mdr_stiffness_of_the_scene_contact_is_hertz():
+    scene = default_scene()
+    p = ts.params_from_scene(scene)
+    k = p.contact().stiffness(p.normal_force)
+    a = (3 * p.normal_force * p.radius / (4 * p.E_star)) ** (1 / 3)
+    # MDR tangential stiffness of a sphere: 2 G* a (sub-grid edge: O(dx^2))
+    assert k == pytest.approx(2 * p.G_star * a, rel=1e-4)
+
+
+def test_cli_simulate_rows_and_convention(cli, capsys):
+    res = cli("tribospec", "simulate", "--amplitudes", "0,1e-7,2e-7", "--model", "potential", "--json")
+    assert res.returncode == 0, res.stderr
+    out = res.json()
+    assert out["convention"] == "per-contact" and "dl/4" in out["amplitude_convention"]
+    rows = out["rows"]
+    assert [r["amplitude_m"] for r in rows] == [0.0, 1e-7, 2e-7]
+    for r in rows:
+        assert r["force_sq_N2"] == pytest.approx(r["force_N"] ** 2, rel=1e-12)
+    lam = default_scene().tribospectroscopy.correlation_length
+    assert rows[1]["force_sq_N2"] / rows[0]["force_sq_N2"] == pytest.approx(float(ts.pinning_shape(1e-7 / lam)), rel=1e-8)
+    res = run_main(capsys, "tribospec", "simulate", "--amplitudes", "2e-7", "--convention", "probe", "--model",
+                   "potential", "--json")
+    probe = json.loads(res.stdout)
+    assert probe["rows"][0]["amplitude_per_contact_m"] == pytest.approx(1e-7)
+    assert probe["rows"][0]["force_N"] == pytest.approx(rows[1]["force_N"], rel=1e-12)
+    assert_one_line_error(run_main(capsys, "tribospec", "simulate", "--amplitudes=-1e-7"), "amplitudes", code=2)
+    assert_one_line_error(run_main(capsys, "tribospec", "simulate", "--amplitudes", "1e-7", "--model", "magic"),
+                          "model", code=2)
+
+
+def test_cli_simulate_stiffness_and_oscillate(cli, capsys):
+    res = run_main(capsys, "tribospec", "simulate", "--amplitudes", "0,5e-8,1e-6", "--model", "stiffness",
+              "--contact-stiffness", "2e7", "--json")
+    assert res.returncode == 0, res.stderr
+    out = json.loads(res.stdout)
+    mu_n = 0.3 * 5.0
+    assert [r["force_N"] for r in out["rows"]] == pytest.approx([2 * mu_n, 2 * mu_n * (1 - 2e7 * 5e-8 / mu_n), 0.0])
+    osc = cli("macro", "oscillate", "--amplitude", "5e-8", "--cycles", "2", "--steps-per-cycle", "100", "--json")
+    assert osc.returncode == 0, osc.stderr
+    o = osc.json()
+    assert o["normal_force_N"] == pytest.approx(10.0, rel=1e-8)
+    assert o["dissipation_per_cycle_J"][-1] > 0
