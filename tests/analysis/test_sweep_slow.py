@@ -23,7 +23,8 @@ def test_quick_sweep_one_point_writes_table_and_figures(lammps_available, tmp_pa
     out = tmp_path / "sweep"
     code = mod.main(["--quick", "--velocities", "20", "--pressures", "150e6", "--out", str(out)])
     assert code == 0
-    rows = list(csv.DictReader((out / "summary.csv").open()))
+    with (out / "summary.csv").open() as fh:
+        rows = list(csv.DictReader(fh))
     assert len(rows) == 1 and float(rows[0]["velocity_m_s"]) == 20.0
     run = out / "v20_p150MPa"
     rates = json.loads((run / "rates.json").read_text())

@@ -56,3 +56,12 @@ def test_partial_workdir_is_reused_for_resume(tmp_path):
     (c.workdir("nanoscale", "k3") / "restart.1000").write_text("x")
     assert (c.workdir("nanoscale", "k3") / "restart.1000").exists()
     assert not (c.workdir("nanoscale", "k3", fresh=True) / "restart.1000").exists()
+
+
+def test_code_hash_is_stable_and_per_model():
+    from tribolmp.chain.planner import STAGES, code_hash
+
+    hashes = {s: code_hash(s) for s in STAGES}
+    assert hashes == {s: code_hash(s) for s in STAGES}
+    # Different models read different sources, so their code identities differ.
+    assert len(set(hashes.values())) == len(STAGES)

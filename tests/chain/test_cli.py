@@ -95,3 +95,16 @@ def test_bench_run_reports_a_failing_benchmark(cli, tmp_path):
     assert "failed: bad" in res.stderr.strip().splitlines()[-1]
     md = (tmp_path / "b" / "bench.md").read_text()
     assert "| 8 | 0.5 |" in md and "kaput" in md
+
+
+def test_workflow_script_plans_the_default_scene():
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[2] / "workflows" / "multiscale_chain.py"
+    proc = subprocess.run([sys.executable, str(script), "--plan"], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stdout.splitlines()
+    assert [ln.split()[0] for ln in lines] == ["nanoscale", "topography", "contact", "lubrication", "macroscale", "tribospectroscopy"]
+    assert lines[3].split()[1] == "skip" and lines[0].split()[1] == "RUN"

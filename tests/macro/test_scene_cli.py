@@ -68,3 +68,29 @@ def test_cli_simulate_stiffness_and_oscillate(cli, capsys):
     o = osc.json()
     assert o["normal_force_N"] == pytest.approx(10.0, rel=1e-8)
     assert o["dissipation_per_cycle_J"][-1] > 0
+
+
+def test_rough_contact_from_the_contact_model(rng):
+    # the body also runs on a rough MDR row (contact model's rough.py): load-dependent
+    # stiffness, micro-slip oscillation and the averaged shakedown force
+    scene = default_scene()
+    assert scene.geometry.profile == "rough"
+    c = macro.contact_from_scene(scene, rng=rng, n_springs=256)
+    assert c.g.min() == 0.0
+    N = 2.0
+    d = c.indentation(N)
+    assert c.normal_force(d) == pytest.approx(N, rel=1e-9)
+    q, k = c.springs(N)
+    assert q.sum() == pytest.approx(N, rel=1e-9)
+    assert c.stiffness(N) == pytest.approx(k[q > 0].sum(), rel=1e-12)
+    # micro-slip: the averaged shakedown force against brute force on the rough row
+    L = c.mu * N / c.stiffness(N)
+    p = macro.DriftParams(normal_force=N, amplitude=0.3 * L, frequency=65e3, velocity=0.01 * L * 65e3,
+                          duration=250 / 65e3, steps_per_cycle=16, slow_steps=250)
+    b = macro.drift_under_oscillation(p, c, scheme="brute")
+    a = macro.drift_under_oscillation(p, c, scheme="averaged")
+    # drift per cycle 1 % of mu N / k: averaging error of that order of 2 mu N
+    assert np.max(np.abs(b.force - np.interp(b.t, a.t, a.force))) < 0.02 * 2 * c.mu * N
+    res = macro.stick_slip_from_scene(scene, contact_law="mdr", law=macro.ConstantFriction(0.4, 0.3),
+                                      rng=np.random.default_rng(3), duration=5e-3, unload_time=4e-3)
+    assert np.all(np.isfinite(res.x))

@@ -176,3 +176,13 @@ def test_cli_stick_slip(cli, capsys, tmp_path):
     assert_one_line_error(cli("macro", "stick-slip", "--friction-file", tmp_path / "r.json"), "mu", code=2)
     assert_one_line_error(run_main(capsys, "macro", "stick-slip", "--mu-s", "0.2", "--mu-k", "0.3"), "mu_s", code=2)
     assert_one_line_error(run_main(capsys, "macro", "stick-slip", "--method", "euler"), "method", code=2)
+
+
+@pytest.mark.parametrize("kc", [0.0, 1e9])
+def test_zero_normal_load_from_the_start(kc):
+    p = StickSlipParams(**{**P, "normal_force": 0.0}, duration=0.02, contact_stiffness=kc, rtol=1e-10)
+    res = stick_slip(p, LAW)
+    # no load, no friction: the body oscillates freely about the moving spring end from rest
+    ref = free_oscillation(res.t, 0.1, 1e5, 0.01, 0.0, 0.0, 0.0, 0.0)
+    assert np.max(np.abs(res.x - ref)) < 1e-6 * np.ptp(ref)
+    assert res.n_transitions <= 2

@@ -38,23 +38,36 @@ def test_profiles_depend_only_on_the_generator():
 
 @pytest.mark.parametrize("dim", [2, 3])
 def test_stack_layers_and_bonds(dim, rng):
-    g = build_system(dim=dim, d=2.5, length=40.0, body_height=12.0, roughness_rms=1.0, rng=rng, width=8.0)
+    g = build_system(
+        dim=dim, d=2.5, length=40.0, body_height=12.0, roughness_rms=1.0, rng=rng, width=8.0
+    )
     mol = g.atoms.arrays["mol_id"]
     y = g.atoms.positions[:, 1]
     assert set(np.unique(mol)) == {MOL_BASE, MOL_LOWER, MOL_UPPER, MOL_SLIDER}
     # bodies stacked bottom to top
-    assert y[mol == MOL_BASE].max() < y[mol == MOL_LOWER].mean() < y[mol == MOL_UPPER].mean() < y[mol == MOL_SLIDER].min()
+    assert (
+        y[mol == MOL_BASE].max()
+        < y[mol == MOL_LOWER].mean()
+        < y[mol == MOL_UPPER].mean()
+        < y[mol == MOL_SLIDER].min()
+    )
     # the rough surfaces touch without overlap: nearest cross-interface distance is one diameter
     lo, up = g.atoms.positions[mol == MOL_LOWER], g.atoms.positions[mol == MOL_UPPER]
     dv = lo[:, None, :] - up[None, :, :]
-    dv[..., 0] -= 40.0 * np.round(dv[..., 0] / 40.0) if dim == 2 else g.box[0, 1] * np.round(dv[..., 0] / g.box[0, 1])
+    dv[..., 0] -= (
+        40.0 * np.round(dv[..., 0] / 40.0)
+        if dim == 2
+        else g.box[0, 1] * np.round(dv[..., 0] / g.box[0, 1])
+    )
     if dim == 3:
         dv[..., 2] -= g.box[2, 1] * np.round(dv[..., 2] / g.box[2, 1])
     dist = np.linalg.norm(dv, axis=2)
     assert dist.min() >= 0.99 * 2.5 and dist.min() < 1.01 * 2.5
     b = g.bonds
     mi, mj = mol[b[:, 1]], mol[b[:, 2]]
-    assert not np.any(((mi == MOL_LOWER) & (mj == MOL_UPPER)) | ((mi == MOL_UPPER) & (mj == MOL_LOWER)))
+    assert not np.any(
+        ((mi == MOL_LOWER) & (mj == MOL_UPPER)) | ((mi == MOL_UPPER) & (mj == MOL_LOWER))
+    )
     assert np.all(mi[b[:, 0] == BOND_BODY] == mj[b[:, 0] == BOND_BODY])
     att = b[:, 0] == BOND_ATTACH
     assert np.all(np.isin(np.minimum(mi[att], mj[att]), [MOL_BASE, MOL_UPPER]))
@@ -72,7 +85,9 @@ def test_stack_layers_and_bonds(dim, rng):
 @pytest.mark.lammps
 @pytest.mark.parametrize("dim", [2, 3])
 def test_data_file_reads_back_in_lammps(lmp, dim, rng, tmp_path):
-    g = build_system(dim=dim, d=2.5, length=30.0, body_height=10.0, roughness_rms=0.8, rng=rng, width=8.0)
+    g = build_system(
+        dim=dim, d=2.5, length=30.0, body_height=10.0, roughness_rms=0.8, rng=rng, width=8.0
+    )
     path = write_bpm_data(tmp_path / "s.data", g, density=0.02, diameter=2.4)
     lmp.commands(
         [

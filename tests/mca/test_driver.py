@@ -12,7 +12,7 @@ import pytest
 
 from tribolmp.errors import BlowUpError, LammpsError, ParameterError
 from tribolmp.lammps.decks import deck_path
-from tribolmp.lammps.mca import MCAParams, _classify, preset_params, restart_files, run_mca
+from tribolmp.lammps.mca import _classify, preset_params, restart_files, run_mca
 
 pytestmark = pytest.mark.lammps
 
@@ -46,15 +46,36 @@ def smoke_run(tmp_path_factory, lammps_available):
 
 def test_output_contract(smoke_run):
     out, res = smoke_run
-    assert (out / "friction.csv").read_text().splitlines()[0] == "time_s,friction_N,normal_N,top_x_m"
+    assert (out / "friction.csv").read_text().splitlines()[
+        0
+    ] == "time_s,friction_N,normal_N,top_x_m"
     lines = (out / "traj.lammpstrj").read_text().splitlines()
     assert DUMP_HEADER in lines
     meta = json.loads((out / "meta.json").read_text())
-    for key in ("dt_s", "dump_interval_steps", "dump_interval_s", "velocity_m_s", "pressure_Pa", "box_m",
-                "automaton_diameter_m", "molecules", "units", "normal_axis", "atom_steps_per_s", "time_s"):
+    for key in (
+        "dt_s",
+        "dump_interval_steps",
+        "dump_interval_s",
+        "velocity_m_s",
+        "pressure_Pa",
+        "box_m",
+        "automaton_diameter_m",
+        "molecules",
+        "units",
+        "normal_axis",
+        "atom_steps_per_s",
+        "time_s",
+    ):
         assert key in meta, key
-    assert meta["molecules"] == {"1": "base", "2": "lower body", "3": "upper body", "4": "rigid slider"}
-    assert meta["dump_interval_s"] == pytest.approx(meta["dt_s"] * meta["dump_interval_steps"], rel=1e-12)
+    assert meta["molecules"] == {
+        "1": "base",
+        "2": "lower body",
+        "3": "upper body",
+        "4": "rigid slider",
+    }
+    assert meta["dump_interval_s"] == pytest.approx(
+        meta["dt_s"] * meta["dump_interval_steps"], rel=1e-12
+    )
     assert (out / "run.log").exists() and restart_files(out)
     assert res.time_s == pytest.approx(1e-9, rel=1e-3)
     assert res.atom_steps_per_s > 0 and np.isfinite(res.mu)
@@ -91,8 +112,17 @@ def test_normal_force_is_controlled(smoke_run):
 
 @pytest.mark.parametrize(
     "changes",
-    [dict(dim=3, box_length=30e-9, box_width=7.5e-9, body_height=10e-9, roughness_rms=1e-9, duration=0.15e-9),
-     dict(bond_style="bpm/rotational", duration=0.15e-9)],
+    [
+        dict(
+            dim=3,
+            box_length=30e-9,
+            box_width=7.5e-9,
+            body_height=10e-9,
+            roughness_rms=1e-9,
+            duration=0.15e-9,
+        ),
+        dict(bond_style="bpm/rotational", duration=0.15e-9),
+    ],
     ids=["3d", "rotational"],
 )
 def test_3d_and_rotational_runs(changes, tmp_path, monkeypatch, lammps_available):
@@ -100,7 +130,10 @@ def test_3d_and_rotational_runs(changes, tmp_path, monkeypatch, lammps_available
     res = run_mca(preset_params("smoke", restart_interval=0.05e-9, **changes), tmp_path, seed=2)
     fr = _friction(tmp_path)
     # the last row is the last whole print interval (5 ps) of the run
-    assert np.all(np.isfinite(fr)) and changes["duration"] - 5.1e-12 <= fr[-1, 0] <= changes["duration"]
+    assert (
+        np.all(np.isfinite(fr))
+        and changes["duration"] - 5.1e-12 <= fr[-1, 0] <= changes["duration"]
+    )
     assert res.natoms > 100
 
 
@@ -125,7 +158,11 @@ def test_resume_reaches_the_uninterrupted_result(tmp_path, monkeypatch, lammps_a
     # windows of friction.csv), so the resumed run is bit-identical to the uninterrupted one
     assert np.array_equal(a, b)
     assert kept_step < full.nit
-    dump_steps = [int(x) for x in (part_dir / "traj.lammpstrj").read_text().split("ITEM: TIMESTEP\n")[1:] for x in [x.split()[0]]]
+    dump_steps = [
+        int(x)
+        for x in (part_dir / "traj.lammpstrj").read_text().split("ITEM: TIMESTEP\n")[1:]
+        for x in [x.split()[0]]
+    ]
     assert dump_steps == sorted(set(dump_steps))
 
 
@@ -159,7 +196,9 @@ def test_run_mca_rejects_non_params(tmp_path):
     [({"FN": -2e4}, "lost atoms"), ({"FN": -1e9}, "communication cutoff")],
     ids=["lost-atoms", "bond-past-cutoff"],
 )
-def test_blowups_name_step_and_cause_and_keep_restart(overrides, cause, tmp_path, monkeypatch, lammps_available):
+def test_blowups_name_step_and_cause_and_keep_restart(
+    overrides, cause, tmp_path, monkeypatch, lammps_available
+):
     _no_rates(monkeypatch)
     params = preset_params("smoke", duration=0.3e-9, restart_interval=0.01e-9)
     with pytest.raises(BlowUpError) as err:
@@ -175,7 +214,9 @@ def test_blowups_name_step_and_cause_and_keep_restart(overrides, cause, tmp_path
 def test_nan_messages_are_classified():
     err = _classify(LammpsError("Non-numeric atom coords - simulation unstable", None, 1234), 1234)
     assert isinstance(err, BlowUpError) and "step 1234" in str(err) and "NaN" in str(err)
-    setup = LammpsError("Expected floating point parameter instead of 'nan' in input script", None, 0)
+    setup = LammpsError(
+        "Expected floating point parameter instead of 'nan' in input script", None, 0
+    )
     assert _classify(setup, 0) is setup
 
 

@@ -8,7 +8,13 @@ import numpy as np
 import pytest
 
 from tribolmp.errors import ParameterError
-from tribolmp.lammps.mapping import MaterialSpec, lattice_moduli, map_material, measure_uniaxial, stability_factor
+from tribolmp.lammps.mapping import (
+    MaterialSpec,
+    lattice_moduli,
+    map_material,
+    measure_uniaxial,
+    stability_factor,
+)
 
 
 def test_central_spring_lattices_match_textbook_moduli():

@@ -135,13 +135,17 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
     meta = read_meta(out)
     warnings_: list[str] = []
     fr = read_friction_csv(out)
-    fc = FrictionCoefficient(fr, start_s=start_s).run().results
-    if fc.status:
+    try:
+        fc = FrictionCoefficient(fr, start_s=start_s).run().results
+    except DataFileError as exc:  # e.g. the bodies never came into contact
+        fc = None
+        warnings_.append(f"friction: {exc}")
+    if fc is not None and fc.status:
         warnings_.append(f"friction: {fc.message}")
     u = open_trajectory(out, meta)
     frames_all, steps = resume_frames(u)
     times = steps * meta.dt_s
-    t_start = fc.steady_start_s if start_s is None else start_s
+    t_start = start_s if start_s is not None else (fc.steady_start_s if fc is not None else 0.0)
     sel, note = steady_frames(times, t_start)
     if note:
         warnings_.append(note)
@@ -191,10 +195,10 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
 
     time_s = meta.time_s if meta.time_s is not None else float(fr["time_s"][-1])
     rates: dict[str, Any] = {
-        "mu": _finite(fc.mu),
-        "mu_err": _finite(fc.mu_err),
-        "mu_steady": bool(fc.steady),
-        "steady_start_s": _finite(fc.steady_start_s),
+        "mu": get(fc, "mu"),
+        "mu_err": get(fc, "mu_err"),
+        "mu_steady": bool(fc.steady) if fc is not None else False,
+        "steady_start_s": get(fc, "steady_start_s"),
         "layer_depth_m": layer,
         "layer_offset_m": get(vp, "layer_offset_m"),
         "layer_resolved": resolved,

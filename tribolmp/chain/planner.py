@@ -45,6 +45,36 @@ MODEL_MODULES = {
 }
 
 
+#: Source folders (relative to the tribolmp package) whose code each stage's results depend on;
+#: their content is hashed into the stage's cache key, so a model change invalidates its results.
+MODEL_SOURCES = {
+    "nanoscale": ("lammps", "analysis", "data/lammps_inputs"),
+    "topography": ("models/topography",),
+    "contact": ("models/contact",),
+    "lubrication": ("models/lubrication",),
+    "macroscale": ("models/macro", "models/contact"),
+    "tribospectroscopy": ("models/tribospectroscopy", "models/macro", "models/contact"),
+}
+
+
+def code_hash(stage: str) -> str:
+    """SHA-256 of the source files (``*.py``, ``*.in``) a stage's model reads; imports nothing."""
+    import hashlib
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    digest = hashlib.sha256()
+    paths = [root / "chain" / "stages.py", root / "models" / "base.py"]
+    for folder in MODEL_SOURCES[stage]:
+        base = root / folder
+        if base.is_dir():
+            paths += sorted(p for p in base.rglob("*") if p.suffix in (".py", ".in") and p.is_file())
+    for p in paths:
+        digest.update(str(p.relative_to(root)).encode())
+        digest.update(p.read_bytes())
+    return digest.hexdigest()
+
+
 @dataclass(frozen=True)
 class StagePlan:
     """The planner's decision for one stage.

@@ -29,7 +29,7 @@ import numpy as np
 from ..errors import SetupError, StageError
 from ..scene import Scene
 from .cache import CachedStage, StageCache, hash_inputs
-from .planner import STAGES, Plan, plan_scene
+from .planner import STAGES, Plan, code_hash, plan_scene
 
 __all__ = ["run_chain", "ChainRun", "StageEntry", "Progress", "stage_seed"]
 
@@ -213,6 +213,7 @@ def run_chain(
             # recomputed upstream stage invalidates everything downstream of it.
             "upstream": {n: f"{run.result(n).key}:{run.result(n).record.get('output_id', '')}" for n in sp.needs},
             "seed": seed,
+            "code": code_hash(sp.name),
         }
         key = cache.key(sp.name, inputs)
         if sp.name in forced:

@@ -166,6 +166,7 @@ class _watch_progress:
 @_stage("nanoscale")
 def nanoscale(ctx: StageContext) -> StageOutput:
     """LAMMPS MCA friction run -> ``rates.json`` (plus friction.csv, trajectory, meta.json)."""
+    from ..errors import LammpsError
     from ..rng import lammps_seed
 
     mca = require_model("tribolmp.lammps.mca", "run_mca", "params_from_scene")
@@ -175,8 +176,23 @@ def nanoscale(ctx: StageContext) -> StageOutput:
     out = ctx.workdir / "mca"
     # An interrupted run left restart files in the (kept) partial folder: continue from them.
     resume = out.is_dir() and any(out.iterdir())
+    seed = lammps_seed(ctx.rng)
+    discarded: list[str] = []
     with _watch_progress(out / "friction.csv", params.duration, ctx.progress):
-        res = mca.run_mca(params, out, seed=lammps_seed(ctx.rng), resume=resume, np=ctx.scene.nanoscale.ranks)
+        while True:
+            try:
+                res = mca.run_mca(params, out, seed=seed, resume=resume, np=ctx.scene.nanoscale.ranks)
+                break
+            except LammpsError as exc:
+                restarts = mca.restart_files(out) if resume and hasattr(mca, "restart_files") else []
+                if not restarts or "restart" not in str(exc).lower():
+                    raise
+                # A kill while LAMMPS was writing a restart file leaves it truncated: drop that
+                # file and continue from the previous one (or from the start when none is left).
+                newest = max(restarts)[1]
+                discarded.append(newest.name)
+                newest.unlink()
+                resume = bool(mca.restart_files(out))
     rates_path = out / "rates.json"
     if not rates_path.exists():
         raise RuntimeError(f"run_mca finished without writing {rates_path.name}")
@@ -196,7 +212,7 @@ def nanoscale(ctx: StageContext) -> StageOutput:
         method=str(res.get("method", "mca")),
         message=str(res.get("message", "")),
         nit=int(res.get("nit", 0) or 0),
-        provenance={"lammps_seed_from": ctx.seed, "resumed": resume, "params": _scalars(dict(vars(params))),
+        provenance={"lammps_seed_from": ctx.seed, "resumed": resume, "discarded_restarts": discarded, "params": _scalars(dict(vars(params))),
                     "rates_provenance": rates.get("provenance", {}), "warnings": rates.get("warnings", [])},
     )
 

@@ -12,25 +12,47 @@ from pathlib import Path
 HELP = "movable cellular automata friction on LAMMPS"
 
 #: JSON fields printed by ``mca run --json`` (a contract checked by others).
-JSON_FIELDS = ("mu", "mu_err", "layer_depth_m", "diffusion_m2_s", "transfer_rate", "atom_steps_per_s", "time_s")
+JSON_FIELDS = (
+    "mu",
+    "mu_err",
+    "layer_depth_m",
+    "diffusion_m2_s",
+    "transfer_rate",
+    "atom_steps_per_s",
+    "time_s",
+)
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
     """Add the ``run`` subcommand."""
     sub = parser.add_subparsers(dest="mca_command", metavar="SUBCOMMAND", parser_class=type(parser))
     sub.required = True
-    r = sub.add_parser("run", help="run the MCA friction experiment", description="Run the MCA friction experiment.")
-    r.add_argument("scene", nargs="?", help="scene TOML ([nanoscale] and [material]); default: the preset")
+    r = sub.add_parser(
+        "run",
+        help="run the MCA friction experiment",
+        description="Run the MCA friction experiment.",
+    )
+    r.add_argument(
+        "scene", nargs="?", help="scene TOML ([nanoscale] and [material]); default: the preset"
+    )
     r.add_argument("--dim", type=int, choices=(2, 3), help="spatial dimension")
     r.add_argument("--velocity", type=float, help="sliding velocity (m/s)")
     r.add_argument("--pressure", type=float, help="normal pressure (Pa)")
     r.add_argument("--time", type=float, help="simulated time (s)")
-    r.add_argument("--preset", choices=("smoke", "default", "paper"), help="size/time preset (default: smoke)")
-    r.add_argument("--bond-style", choices=("bpm/spring/plastic", "bpm/rotational"), help="link model")
-    r.add_argument("--np", type=int, default=1, help="MPI ranks (runs under the mpich wheel's mpiexec)")
+    r.add_argument(
+        "--preset", choices=("smoke", "default", "paper"), help="size/time preset (default: smoke)"
+    )
+    r.add_argument(
+        "--bond-style", choices=("bpm/spring/plastic", "bpm/rotational"), help="link model"
+    )
+    r.add_argument(
+        "--np", type=int, default=1, help="MPI ranks (runs under the mpich wheel's mpiexec)"
+    )
     r.add_argument("--seed", type=int, help="seed (default: the scene's [scene].seed)")
     r.add_argument("--out", default="mca_run", help="output directory (default ./mca_run)")
-    r.add_argument("--resume", action="store_true", help="continue from the newest restart file in --out")
+    r.add_argument(
+        "--resume", action="store_true", help="continue from the newest restart file in --out"
+    )
     r.add_argument("--json", action="store_true", help="print the result as JSON")
 
 
@@ -43,7 +65,9 @@ def run(args: argparse.Namespace) -> int:
     if args.scene:
         params = params_from_scene(scene)
         if args.preset:
-            params = preset_params(args.preset, **{k: v for k, v in _scene_overrides(params).items()})
+            params = preset_params(
+                args.preset, **{k: v for k, v in _scene_overrides(params).items()}
+            )
     else:
         params = preset_params(args.preset or "smoke")
     changes = {

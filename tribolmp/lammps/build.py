@@ -45,12 +45,12 @@ from ..errors import ParameterError
 __all__ = [
     "MOL_BASE",
     "MOL_LOWER",
-    "MOL_UPPER",
     "MOL_SLIDER",
+    "MOL_UPPER",
     "MCAGeometry",
-    "self_affine_profile",
-    "build_system",
     "build_block",
+    "build_system",
+    "self_affine_profile",
     "write_bpm_data",
 ]
 
@@ -99,7 +99,9 @@ class MCAGeometry:
         return int(np.count_nonzero(self.atoms.arrays["mol_id"] == mol))
 
 
-def self_affine_profile(n: int | tuple[int, int], rms: float, hurst: float, rng: np.random.Generator) -> np.ndarray:
+def self_affine_profile(
+    n: int | tuple[int, int], rms: float, hurst: float, rng: np.random.Generator
+) -> np.ndarray:
     """Periodic self-affine random heights by Fourier filtering of white noise.
 
     Parameters
@@ -121,7 +123,9 @@ def self_affine_profile(n: int | tuple[int, int], rms: float, hurst: float, rng:
     shape = (n,) if np.isscalar(n) else tuple(n)
     noise = rng.standard_normal(shape)
     spec = np.fft.rfftn(noise)
-    qs = np.meshgrid(*[np.fft.fftfreq(m) for m in shape[:-1]], np.fft.rfftfreq(shape[-1]), indexing="ij")
+    qs = np.meshgrid(
+        *[np.fft.fftfreq(m) for m in shape[:-1]], np.fft.rfftfreq(shape[-1]), indexing="ij"
+    )
     q = np.sqrt(sum(qq**2 for qq in qs))
     with np.errstate(divide="ignore"):
         # amplitude ~ sqrt(PSD); the mean (q = 0) is removed
@@ -138,7 +142,12 @@ def _hex_block(nx: int, nrows: int, d: float):
     from ase import Atoms
 
     dy = math.sqrt(3.0) / 2.0 * d
-    cell = Atoms("H2", positions=[[0.0, 0.0, 0.0], [0.5 * d, dy, 0.0]], cell=[d, 2 * dy, d], pbc=[True, False, True])
+    cell = Atoms(
+        "H2",
+        positions=[[0.0, 0.0, 0.0], [0.5 * d, dy, 0.0]],
+        cell=[d, 2 * dy, d],
+        pbc=[True, False, True],
+    )
     block = cell.repeat((nx, (nrows + 1) // 2, 1))
     if nrows % 2:
         block = block[block.positions[:, 1] < (nrows - 0.5) * dy]
@@ -249,10 +258,20 @@ def build_system(
     # (separation of their outermost automata <= d); upper-body automata that would then sit closer
     # than one diameter to a lower-body automaton are removed (the asperity tips are trimmed).
     # Without this the slider spends most of a short run approaching the first, highest asperity.
-    shift = _contact_shift(lower.positions[mol_lo == MOL_LOWER], p[mol_up == MOL_UPPER], d, lx, lz, dim, contact_fraction)
+    shift = _contact_shift(
+        lower.positions[mol_lo == MOL_LOWER],
+        p[mol_up == MOL_UPPER],
+        d,
+        lx,
+        lz,
+        dim,
+        contact_fraction,
+    )
     p[:, 1] += shift
     upper.positions = p
-    trim = _too_close(lower.positions[mol_lo == MOL_LOWER], p, d, lx, lz, dim) & (mol_up == MOL_UPPER)
+    trim = _too_close(lower.positions[mol_lo == MOL_LOWER], p, d, lx, lz, dim) & (
+        mol_up == MOL_UPPER
+    )
     upper = upper[~trim]
     mol_up = mol_up[~trim]
 
@@ -275,7 +294,9 @@ def build_system(
     atoms.pbc = [True, False, True]
     bonds = _neighbour_bonds(pos, mol, box, d, dim)
     interface = 0.5 * (y_mean_lo + (slider_bottom - body_height + shift))
-    return MCAGeometry(atoms=atoms, bonds=bonds, dim=dim, d=d, box=box, interface_y=float(interface))
+    return MCAGeometry(
+        atoms=atoms, bonds=bonds, dim=dim, d=d, box=box, interface_y=float(interface)
+    )
 
 
 def _columns(pos: np.ndarray, d: float, lx: float, lz: float, dim: int) -> np.ndarray:
@@ -286,7 +307,9 @@ def _columns(pos: np.ndarray, d: float, lx: float, lz: float, dim: int) -> np.nd
     return ix * 100000 + iz
 
 
-def _contact_shift(lo: np.ndarray, up: np.ndarray, d: float, lx: float, lz: float, dim: int, frac: float) -> float:
+def _contact_shift(
+    lo: np.ndarray, up: np.ndarray, d: float, lx: float, lz: float, dim: int, frac: float
+) -> float:
     """Vertical shift of the upper body that closes the gap in a fraction ``frac`` of the columns."""
     base = lo[:, 1].max() + d - up[:, 1].min()  # highest asperities just touching
     if frac <= 0.0:
@@ -300,7 +323,9 @@ def _contact_shift(lo: np.ndarray, up: np.ndarray, d: float, lx: float, lz: floa
     return float(-np.quantile(np.asarray(gaps), min(frac, 1.0)))
 
 
-def _too_close(lo: np.ndarray, pos: np.ndarray, d: float, lx: float, lz: float, dim: int) -> np.ndarray:
+def _too_close(
+    lo: np.ndarray, pos: np.ndarray, d: float, lx: float, lz: float, dim: int
+) -> np.ndarray:
     """Mask of ``pos`` within 0.99 d of any point of ``lo`` (periodic in x, and z in 3D)."""
     from scipy.spatial import cKDTree
 
@@ -349,7 +374,13 @@ def build_block(*, dim: int, d: float, n: int) -> MCAGeometry:
 
 
 def _neighbour_bonds(
-    pos: np.ndarray, mol: np.ndarray, box: np.ndarray, d: float, dim: int, *, periodic_y: bool = False
+    pos: np.ndarray,
+    mol: np.ndarray,
+    box: np.ndarray,
+    d: float,
+    dim: int,
+    *,
+    periodic_y: bool = False,
 ) -> np.ndarray:
     """Bonds between nearest neighbours (distance < 1.05 d) of the same body, plus attachments.
 
@@ -379,7 +410,12 @@ def _neighbour_bonds(
 
 
 def write_bpm_data(
-    path: str | Path, geom: MCAGeometry, *, density: float, diameter: float | None = None, bond_types: int = 3
+    path: str | Path,
+    geom: MCAGeometry,
+    *,
+    density: float,
+    diameter: float | None = None,
+    bond_types: int = 3,
 ) -> Path:
     """Write ``geom`` as a LAMMPS data file for ``atom_style bpm/sphere``.
 

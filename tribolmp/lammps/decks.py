@@ -14,7 +14,7 @@ from pathlib import Path
 
 from ..errors import MissingFeatureError
 
-__all__ = ["decks_dir", "deck_path", "list_decks"]
+__all__ = ["deck_path", "decks_dir", "list_decks"]
 
 _PKG = Path(__file__).resolve().parents[1]
 

@@ -53,15 +53,15 @@ from ..models.base import check_choice, check_range
 from ..units import to_lammps
 
 __all__ = [
-    "MaterialSpec",
+    "MAX_DIAMETER",
+    "MIN_DIAMETER",
     "BondCoefficients",
-    "lattice_vectors",
+    "MaterialSpec",
     "lattice_moduli",
-    "stability_factor",
+    "lattice_vectors",
     "map_material",
     "measure_uniaxial",
-    "MIN_DIAMETER",
-    "MAX_DIAMETER",
+    "stability_factor",
 ]
 
 MIN_DIAMETER = 0.5e-9
@@ -113,19 +113,45 @@ class MaterialSpec:
     def __post_init__(self) -> None:
         check_range("youngs_modulus", self.youngs_modulus, 0.0, 2e12, lo_open=True, unit="Pa")
         check_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5, lo_open=True, hi_open=True)
-        check_range("yield_strength", self.yield_strength, 0.0, self.youngs_modulus, lo_open=True, hi_open=True, unit="Pa")
-        check_range("ultimate_strength", self.ultimate_strength, self.yield_strength, self.youngs_modulus, hi_open=True, unit="Pa")
+        check_range(
+            "yield_strength",
+            self.yield_strength,
+            0.0,
+            self.youngs_modulus,
+            lo_open=True,
+            hi_open=True,
+            unit="Pa",
+        )
+        check_range(
+            "ultimate_strength",
+            self.ultimate_strength,
+            self.yield_strength,
+            self.youngs_modulus,
+            hi_open=True,
+            unit="Pa",
+        )
         check_range("diameter", self.diameter, MIN_DIAMETER, MAX_DIAMETER, unit="m")
         check_range("density", self.density, 0.0, 1e5, lo_open=True, unit="kg/m^3")
         if self.dim not in (2, 3):
             raise ParameterError("dim", "2 or 3", self.dim)
         check_choice("bond_style", self.bond_style, BOND_STYLES)
         flow = 0.5 * (self.yield_strength + self.ultimate_strength) / self.youngs_modulus
-        check_range("failure_strain", self.failure_strain, 3.0 * flow, 0.5, lo_open=True, unit=f"(> 3x the flow strain {flow:.3g})")
+        check_range(
+            "failure_strain",
+            self.failure_strain,
+            3.0 * flow,
+            0.5,
+            lo_open=True,
+            unit=f"(> 3x the flow strain {flow:.3g})",
+        )
         check_range("damping_ratio", self.damping_ratio, 0.0, 1.0)
         check_range("contact_friction", self.contact_friction, 0.0, 10.0)
         if self.bond_style == "bpm/rotational" and self.poisson_ratio >= 1.0 / 3.0:
-            raise ParameterError("poisson_ratio", "a number in (-1, 1/3) for bpm/rotational lattices", self.poisson_ratio)
+            raise ParameterError(
+                "poisson_ratio",
+                "a number in (-1, 1/3) for bpm/rotational lattices",
+                self.poisson_ratio,
+            )
 
 
 @dataclass(frozen=True)
@@ -212,7 +238,9 @@ def lattice_vectors(dim: int) -> tuple[np.ndarray, float]:
     if dim == 2:
         ang = np.deg2rad([0.0, 60.0, 120.0])
         return np.column_stack([np.cos(ang), np.sin(ang), np.zeros(3)]), math.sqrt(3.0) / 2.0
-    v = np.array([[1, 1, 0], [1, -1, 0], [1, 0, 1], [1, 0, -1], [0, 1, 1], [0, 1, -1]], float) / math.sqrt(2.0)
+    v = np.array(
+        [[1, 1, 0], [1, -1, 0], [1, 0, 1], [1, 0, -1], [0, 1, 1], [0, 1, -1]], float
+    ) / math.sqrt(2.0)
     return v, 1.0 / math.sqrt(2.0)
 
 
@@ -314,7 +342,9 @@ def map_material(spec: MaterialSpec) -> BondCoefficients:
     eps_plastic = (flow / spec.youngs_modulus) * bond_per_strain
     eps_crit = spec.failure_strain * bond_per_strain
     # rotational rupture: normal + shear force of the critical link at sigma_u
-    fn_u, fs_u = _critical_link_forces(k_n, k_s, d, spec.dim, to_lammps(spec.ultimate_strength, "pressure"))
+    fn_u, fs_u = _critical_link_forces(
+        k_n, k_s, d, spec.dim, to_lammps(spec.ultimate_strength, "pressure")
+    )
     # B = fn/fcr + fs/fscr = 1 at sigma_u with fcr = fscr
     f_crit = fn_u + fs_u
     fs_crit = f_crit
@@ -383,7 +413,9 @@ def _max_bond_strain(ratio: float, dim: int, nu: float) -> float:
     return float(max(abs(b @ eps @ b) for b in n))
 
 
-def _critical_link_forces(k_n: float, k_s: float, d: float, dim: int, sigma: float) -> tuple[float, float]:
+def _critical_link_forces(
+    k_n: float, k_s: float, d: float, dim: int, sigma: float
+) -> tuple[float, float]:
     """Normal (tension) and shear force of the most loaded link at uniaxial stress ``sigma``."""
     n, _ = lattice_vectors(dim)
     e_mod, _ = lattice_moduli(k_n, k_s, d, dim)
@@ -460,7 +492,9 @@ def measure_uniaxial(
         out_dir = tmp.name
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    data = write_bpm_data(out / "block.data", geom, density=c.density_column, diameter=c.contact_diameter)
+    data = write_bpm_data(
+        out / "block.data", geom, density=c.density_column, diameter=c.contact_diameter
+    )
     dt = 0.1 * c.dt_unit
     # elastic part (to 2x the flow strain) 10x slower, so the lateral barostat keeps up
     sign = 1.0 if mode == "tension" else -1.0
@@ -470,17 +504,43 @@ def measure_uniaxial(
     steps = max(1, int(math.ceil((strain - slow) / (abs(erate) * dt))))
     every = max(1, (steps + steps_slow) // 600)
     variables = {
-        "data": data, "out": out, "dim": spec.dim, "bond": "rotational" if spec.bond_style == "bpm/rotational" else "plastic",
-        "dt": f"{dt:.10g}", "erate": f"{erate:.10g}", "steps": steps, "print_every": every,
-        "erate_slow": f"{0.1 * erate:.10g}", "steps_slow": steps_slow,
-        "kn": f"{c.k_n:.10g}", "ecrit": f"{c.eps_crit:.10g}", "gn": f"{c.gamma_n:.10g}", "ep": f"{c.eps_plastic:.10g}",
-        "ks": f"{c.k_s:.10g}", "kb": f"{c.k_b:.10g}", "kt": f"{c.k_t:.10g}", "fcr": f"{c.f_crit:.10g}",
-        "fscr": f"{c.fs_crit:.10g}", "tbcr": f"{c.tb_crit:.10g}", "ttcr": f"{c.tt_crit:.10g}", "gs": f"{c.gamma_s:.10g}",
-        "gr": f"{c.gamma_r:.10g}", "gt": f"{c.gamma_t:.10g}", "comm_cut": f"{2.2 * d:.10g}",
+        "data": data,
+        "out": out,
+        "dim": spec.dim,
+        "bond": "rotational" if spec.bond_style == "bpm/rotational" else "plastic",
+        "dt": f"{dt:.10g}",
+        "erate": f"{erate:.10g}",
+        "steps": steps,
+        "print_every": every,
+        "erate_slow": f"{0.1 * erate:.10g}",
+        "steps_slow": steps_slow,
+        "kn": f"{c.k_n:.10g}",
+        "ecrit": f"{c.eps_crit:.10g}",
+        "gn": f"{c.gamma_n:.10g}",
+        "ep": f"{c.eps_plastic:.10g}",
+        "ks": f"{c.k_s:.10g}",
+        "kb": f"{c.k_b:.10g}",
+        "kt": f"{c.k_t:.10g}",
+        "fcr": f"{c.f_crit:.10g}",
+        "fscr": f"{c.fs_crit:.10g}",
+        "tbcr": f"{c.tb_crit:.10g}",
+        "ttcr": f"{c.tt_crit:.10g}",
+        "gs": f"{c.gamma_s:.10g}",
+        "gr": f"{c.gamma_r:.10g}",
+        "gt": f"{c.gamma_t:.10g}",
+        "comm_cut": f"{2.2 * d:.10g}",
         "modulus": f"{to_lammps(spec.youngs_modulus, 'pressure'):.10g}",
     }
-    res = Result(method=f"lammps/{spec.bond_style}/{mode}", units={
-        "youngs_modulus": "Pa", "yield_strength": "Pa", "ultimate_strength": "Pa", "stress": "Pa", "poisson_ratio": "1"})
+    res = Result(
+        method=f"lammps/{spec.bond_style}/{mode}",
+        units={
+            "youngs_modulus": "Pa",
+            "yield_strength": "Pa",
+            "ultimate_strength": "Pa",
+            "stress": "Pa",
+            "poisson_ratio": "1",
+        },
+    )
     with timed(res):
         with LammpsSession(log=None, variables=variables) as lmp:
             lmp.file(deck_path("mca_tension"))

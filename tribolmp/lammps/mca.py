@@ -39,7 +39,15 @@ from ..scene.fields import param, validate_dataclass
 from .decks import deck_path
 from .mapping import MaterialSpec, map_material
 
-__all__ = ["MCAParams", "PRESETS", "preset_params", "params_from_scene", "run_mca", "deck_variables", "main"]
+__all__ = [
+    "PRESETS",
+    "MCAParams",
+    "deck_variables",
+    "main",
+    "params_from_scene",
+    "preset_params",
+    "run_mca",
+]
 
 MOLECULES = {"1": "base", "2": "lower body", "3": "upper body", "4": "rigid slider"}
 
@@ -53,61 +61,128 @@ class MCAParams:
     """
 
     dim: int = param(2, choices=(2, 3), doc="Spatial dimension (2: hexagonal sheet, 3: FCC).")
-    automaton_diameter: float = param(2.5e-9, unit="m", lo=0.5e-9, hi=50e-9, doc="Automaton size d.")
-    bond_style: str = param("bpm/spring/plastic", choices=("bpm/spring/plastic", "bpm/rotational"), doc="Link model.")
-    sliding_velocity: float = param(5.0, unit="m/s", lo=0.0, lo_open=True, hi=100.0, doc="Slider velocity.")
-    pressure: float = param(150e6, unit="Pa", lo=0.0, lo_open=True, hi=2e9, doc="Normal pressure on the slider.")
+    automaton_diameter: float = param(
+        2.5e-9, unit="m", lo=0.5e-9, hi=50e-9, doc="Automaton size d."
+    )
+    bond_style: str = param(
+        "bpm/spring/plastic", choices=("bpm/spring/plastic", "bpm/rotational"), doc="Link model."
+    )
+    sliding_velocity: float = param(
+        5.0, unit="m/s", lo=0.0, lo_open=True, hi=100.0, doc="Slider velocity."
+    )
+    pressure: float = param(
+        150e6, unit="Pa", lo=0.0, lo_open=True, hi=2e9, doc="Normal pressure on the slider."
+    )
     duration: float = param(1e-9, unit="s", lo=0.0, lo_open=True, hi=1e-5, doc="Simulated time.")
-    box_length: float = param(50e-9, unit="m", lo=0.0, lo_open=True, hi=1e-5, doc="Periodic length along x.")
-    box_width: float = param(10e-9, unit="m", lo=0.0, lo_open=True, hi=1e-5, doc="Periodic width along z (3D).")
-    body_height: float = param(15e-9, unit="m", lo=0.0, lo_open=True, hi=1e-5, doc="Height of each body.")
-    roughness_rms: float = param(1.5e-9, unit="m", lo=0.0, hi=1e-6, doc="Rms height of each rough surface.")
+    box_length: float = param(
+        50e-9, unit="m", lo=0.0, lo_open=True, hi=1e-5, doc="Periodic length along x."
+    )
+    box_width: float = param(
+        10e-9, unit="m", lo=0.0, lo_open=True, hi=1e-5, doc="Periodic width along z (3D)."
+    )
+    body_height: float = param(
+        15e-9, unit="m", lo=0.0, lo_open=True, hi=1e-5, doc="Height of each body."
+    )
+    roughness_rms: float = param(
+        1.5e-9, unit="m", lo=0.0, hi=1e-6, doc="Rms height of each rough surface."
+    )
     hurst: float = param(0.8, lo=0.0, hi=1.0, lo_open=True, doc="Hurst exponent of the surfaces.")
     youngs_modulus: float = param(206e9, unit="Pa", lo=0.0, lo_open=True, hi=2e12, doc="E.")
     poisson_ratio: float = param(0.3, lo=-1.0, hi=0.5, lo_open=True, hi_open=True, doc="nu.")
     yield_strength: float = param(480e6, unit="Pa", lo=0.0, lo_open=True, hi=1e11, doc="sigma_y.")
-    ultimate_strength: float = param(552e6, unit="Pa", lo=0.0, lo_open=True, hi=1e11, doc="sigma_u.")
+    ultimate_strength: float = param(
+        552e6, unit="Pa", lo=0.0, lo_open=True, hi=1e11, doc="sigma_u."
+    )
     density: float = param(7800.0, unit="kg/m^3", lo=0.0, lo_open=True, hi=1e5, doc="Mass density.")
-    failure_strain: float = param(0.05, lo=0.0, hi=0.5, lo_open=True, doc="Link rupture strain (uniaxial).")
-    damping_ratio: float = param(0.1, lo=0.0, hi=1.0, doc="Link/contact damping, fraction of critical.")
+    failure_strain: float = param(
+        0.05, lo=0.0, hi=0.5, lo_open=True, doc="Link rupture strain (uniaxial)."
+    )
+    damping_ratio: float = param(
+        0.1, lo=0.0, hi=1.0, doc="Link/contact damping, fraction of critical."
+    )
     contact_friction: float = param(0.5, lo=0.0, hi=10.0, doc="Coulomb cap of contact viscosity.")
     dt_factor: float = param(0.1, lo=0.0, lo_open=True, hi=10.0, doc="Timestep / sqrt(m/k).")
     ramp_time: float = param(0.1e-9, unit="s", lo=0.0, hi=1e-6, doc="Velocity ramp 0 -> V.")
-    approach_velocity: float = param(5.0, unit="m/s", lo=0.0, lo_open=True, hi=100.0, doc="Dashpot speed of the slider under F_N.")
+    approach_velocity: float = param(
+        5.0,
+        unit="m/s",
+        lo=0.0,
+        lo_open=True,
+        hi=100.0,
+        doc="Dashpot speed of the slider under F_N.",
+    )
     rebond_factor: float = param(1.0, lo=0.0, hi=1.0, doc="Strength of re-formed links / original.")
-    rebond_strain: float = param(0.01, lo=0.0, hi=0.2, doc="Extra compression below contact for re-linking.")
-    rebond_interval: float = param(5e-12, unit="s", lo=0.0, lo_open=True, hi=1e-6, doc="Re-linking check interval.")
-    sink_depth: float = param(0.0, unit="m", lo=0.0, hi=1e-5, doc="Thickness of the heat-sink layers next to base and slider (0: none).")
-    sink_tau: float = param(10e-12, unit="s", lo=0.0, lo_open=True, hi=1e-6, doc="Heat-sink time constant.")
-    dump_interval: float = param(50e-12, unit="s", lo=0.0, lo_open=True, hi=1e-3, doc="Trajectory interval.")
-    print_interval: float = param(5e-12, unit="s", lo=0.0, lo_open=True, hi=1e-3, doc="friction.csv interval.")
-    restart_interval: float = param(0.25e-9, unit="s", lo=0.0, lo_open=True, hi=1e-3, doc="Restart file interval.")
-    preset: str = param("smoke", choices=("smoke", "default", "paper", "custom"), doc="Name of the size/time preset.")
+    rebond_strain: float = param(
+        0.01, lo=0.0, hi=0.2, doc="Extra compression below contact for re-linking."
+    )
+    rebond_interval: float = param(
+        5e-12, unit="s", lo=0.0, lo_open=True, hi=1e-6, doc="Re-linking check interval."
+    )
+    sink_depth: float = param(
+        0.0,
+        unit="m",
+        lo=0.0,
+        hi=1e-5,
+        doc="Thickness of the heat-sink layers next to base and slider (0: none).",
+    )
+    sink_tau: float = param(
+        10e-12, unit="s", lo=0.0, lo_open=True, hi=1e-6, doc="Heat-sink time constant."
+    )
+    dump_interval: float = param(
+        50e-12, unit="s", lo=0.0, lo_open=True, hi=1e-3, doc="Trajectory interval."
+    )
+    print_interval: float = param(
+        5e-12, unit="s", lo=0.0, lo_open=True, hi=1e-3, doc="friction.csv interval."
+    )
+    restart_interval: float = param(
+        0.25e-9, unit="s", lo=0.0, lo_open=True, hi=1e-3, doc="Restart file interval."
+    )
+    preset: str = param(
+        "smoke",
+        choices=("smoke", "default", "paper", "custom"),
+        doc="Name of the size/time preset.",
+    )
 
     def __post_init__(self) -> None:
         validate_dataclass(self)
         d = self.automaton_diameter
         if self.box_length < 8 * d:
-            raise ParameterError("box_length", f"a value >= 8 automaton diameters ({8 * d:g} m)", self.box_length)
+            raise ParameterError(
+                "box_length", f"a value >= 8 automaton diameters ({8 * d:g} m)", self.box_length
+            )
         if self.body_height < 4 * d:
-            raise ParameterError("body_height", f"a value >= 4 automaton diameters ({4 * d:g} m)", self.body_height)
+            raise ParameterError(
+                "body_height", f"a value >= 4 automaton diameters ({4 * d:g} m)", self.body_height
+            )
         if self.dim == 3 and self.box_width < 2.9 * d:
-            raise ParameterError("box_width", f"a value >= 2 FCC cells ({2.9 * d:g} m)", self.box_width)
+            raise ParameterError(
+                "box_width", f"a value >= 2 FCC cells ({2.9 * d:g} m)", self.box_width
+            )
         if self.roughness_rms > self.body_height / 4:
-            raise ParameterError("roughness_rms", f"a value <= body_height/4 ({self.body_height / 4:g} m)", self.roughness_rms)
+            raise ParameterError(
+                "roughness_rms",
+                f"a value <= body_height/4 ({self.body_height / 4:g} m)",
+                self.roughness_rms,
+            )
         spec = self.material()  # validates the material cross-checks
         coeff = map_material(spec)
         if self.dt_factor > 0.5 * coeff.dt_max_factor:
             # half the Verlet limit of the lattice: contacts and damping need margin
             raise ParameterError(
-                "dt_factor", f"a value <= {0.5 * coeff.dt_max_factor:.3g} (half the lattice's Verlet stability limit)", self.dt_factor
+                "dt_factor",
+                f"a value <= {0.5 * coeff.dt_max_factor:.3g} (half the lattice's Verlet stability limit)",
+                self.dt_factor,
             )
         if self.pressure >= coeff.flow_stress:
             raise ParameterError(
-                "pressure", f"a value below the lattice's flow stress {coeff.flow_stress:g} Pa (it would crush the lattice)", self.pressure
+                "pressure",
+                f"a value below the lattice's flow stress {coeff.flow_stress:g} Pa (it would crush the lattice)",
+                self.pressure,
             )
         if self.duration < self.ramp_time:
-            raise ParameterError("duration", f"a value >= ramp_time ({self.ramp_time:g} s)", self.duration)
+            raise ParameterError(
+                "duration", f"a value >= ramp_time ({self.ramp_time:g} s)", self.duration
+            )
 
     def material(self) -> MaterialSpec:
         """The :class:`MaterialSpec` of the bodies."""
@@ -134,11 +209,35 @@ class MCAParams:
 #: feasibility size (200 x ~100 nm, d = 2.5 nm, ~3.6k automata) for 20 ns.
 #: ``paper``: the same size for 100 ns (the seed's time to dynamic equilibrium).
 PRESETS: dict[str, dict[str, Any]] = {
-    "smoke": dict(box_length=50e-9, body_height=15e-9, duration=1e-9, roughness_rms=1.5e-9, restart_interval=0.25e-9),
-    "default": dict(box_length=200e-9, body_height=45e-9, duration=20e-9, roughness_rms=2e-9, box_width=10e-9,
-                    dump_interval=0.2e-9, print_interval=10e-12, restart_interval=2e-9, sink_depth=5e-9),
-    "paper": dict(box_length=200e-9, body_height=45e-9, duration=100e-9, roughness_rms=2e-9, box_width=10e-9,
-                  dump_interval=0.5e-9, print_interval=20e-12, restart_interval=5e-9, sink_depth=5e-9),
+    "smoke": dict(
+        box_length=50e-9,
+        body_height=15e-9,
+        duration=1e-9,
+        roughness_rms=1.5e-9,
+        restart_interval=0.25e-9,
+    ),
+    "default": dict(
+        box_length=200e-9,
+        body_height=45e-9,
+        duration=20e-9,
+        roughness_rms=2e-9,
+        box_width=10e-9,
+        dump_interval=0.2e-9,
+        print_interval=10e-12,
+        restart_interval=2e-9,
+        sink_depth=5e-9,
+    ),
+    "paper": dict(
+        box_length=200e-9,
+        body_height=45e-9,
+        duration=100e-9,
+        roughness_rms=2e-9,
+        box_width=10e-9,
+        dump_interval=0.5e-9,
+        print_interval=20e-12,
+        restart_interval=5e-9,
+        sink_depth=5e-9,
+    ),
 }
 
 
@@ -181,7 +280,9 @@ def _steps(t: float, dt: float) -> int:
     return max(1, int(round(t / dt)))
 
 
-def deck_variables(params: MCAParams, *, data: str | Path, out: str | Path, seed: int, geom_info: dict) -> dict[str, Any]:
+def deck_variables(
+    params: MCAParams, *, data: str | Path, out: str | Path, seed: int, geom_info: dict
+) -> dict[str, Any]:
     """The ``-var`` values of ``mca_friction.in`` for ``params`` (LAMMPS nano units).
 
     Parameters
@@ -272,7 +373,9 @@ def _prepare(params: MCAParams, out: Path, seed: int, overrides: dict[str, Any])
         hurst=params.hurst,
         rng=rng,
     )
-    data = write_bpm_data(out / "system.data", geom, density=c.density_column, diameter=c.contact_diameter)
+    data = write_bpm_data(
+        out / "system.data", geom, density=c.density_column, diameter=c.contact_diameter
+    )
     pos = geom.atoms.positions
     mol = geom.atoms.arrays["mol_id"]
     sink = params.sink_depth * 1e9
@@ -293,10 +396,19 @@ def _prepare(params: MCAParams, out: Path, seed: int, overrides: dict[str, Any])
     every = int(variables["dump_every"])
     meta = {
         "units": {
-            "dt_s": "s", "dump_interval_s": "s", "velocity_m_s": "m/s", "pressure_Pa": "Pa",
-            "automaton_diameter_m": "m", "box_m": "m", "density_kg_m3": "kg/m^3", "normal_force_N": "N",
-            "traj.lammpstrj": "LAMMPS units nano: nm, nm/ns (= m/s)", "friction.csv": "SI",
-            "time_s": "s", "atom_steps_per_s": "1/s", "wall_time_s": "s",
+            "dt_s": "s",
+            "dump_interval_s": "s",
+            "velocity_m_s": "m/s",
+            "pressure_Pa": "Pa",
+            "automaton_diameter_m": "m",
+            "box_m": "m",
+            "density_kg_m3": "kg/m^3",
+            "normal_force_N": "N",
+            "traj.lammpstrj": "LAMMPS units nano: nm, nm/ns (= m/s)",
+            "friction.csv": "SI",
+            "time_s": "s",
+            "atom_steps_per_s": "1/s",
+            "wall_time_s": "s",
         },
         "lammps_units": "nano",
         "dt_s": dt_s,
@@ -326,7 +438,10 @@ def _prepare(params: MCAParams, out: Path, seed: int, overrides: dict[str, Any])
         "seed": seed,
         "lammps_seed": lmp_seed,
         "params": dataclasses.asdict(params),
-        "mapping": {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in c.as_dict().items()},
+        "mapping": {
+            k: (float(v) if isinstance(v, (float, np.floating)) else v)
+            for k, v in c.as_dict().items()
+        },
         "deck": str(deck_path("mca_friction")),
         "deck_variables": {k: str(v) for k, v in variables.items()},
         "overrides": {k: str(v) for k, v in overrides.items()},
@@ -405,11 +520,15 @@ def _dedupe_outputs(out: Path) -> None:
 # ---------------------------------------------------------------------- running
 
 _CAUSES = (
-    (re.compile(r"lost atoms", re.I), "lost atoms (an automaton left the box)"),
-    (re.compile(r"bond atoms? .*missing|atom missing in bpm bond", re.I),
-     "a link stretched past the communication cutoff (bond atoms missing)"),
-    (re.compile(r"non-numeric atom|out of range atoms|\bnan\b.*(force|coord|position)", re.I),
-     "non-finite positions or forces (NaN)"),
+    (re.compile(r"lost atoms", re.IGNORECASE), "lost atoms (an automaton left the box)"),
+    (
+        re.compile(r"bond atoms? .*missing|atom missing in bpm bond", re.IGNORECASE),
+        "a link stretched past the communication cutoff (bond atoms missing)",
+    ),
+    (
+        re.compile(r"non-numeric atom|out of range atoms|\bnan\b.*(force|coord|position)", re.IGNORECASE),
+        "non-finite positions or forces (NaN)",
+    ),
 )
 
 
@@ -453,7 +572,11 @@ def _run_lammps(variables: dict[str, Any], out: Path, *, resume: bool) -> dict[s
             except LammpsError as exc:
                 raise _classify(exc, exc.step) from None
             step = int(lmp.thermo("step"))
-            vals = [lmp.thermo("ke"), lmp.lmp.extract_variable("friction"), lmp.lmp.extract_variable("normal")]
+            vals = [
+                lmp.thermo("ke"),
+                lmp.lmp.extract_variable("friction"),
+                lmp.lmp.extract_variable("normal"),
+            ]
             if not all(math.isfinite(float(v)) for v in vals):
                 raise BlowUpError(
                     f"MCA run failed at step {step}: non-finite kinetic energy or forces (NaN); last restart kept in {out}"
@@ -487,7 +610,9 @@ def _mpi_command(np_: int) -> list[str]:
     if not mpiexec.exists():
         from ..errors import MissingFeatureError
 
-        raise MissingFeatureError(f"mpiexec: expected the mpich wheel's mpiexec next to {sys.executable}, got none")
+        raise MissingFeatureError(
+            f"mpiexec: expected the mpich wheel's mpiexec next to {sys.executable}, got none"
+        )
     return [str(mpiexec), "-n", str(np_)]
 
 
@@ -545,9 +670,13 @@ def run_mca(
     if np_ == 1:
         counters = _run_lammps(variables, out, resume=resume)
     else:
-        cmd = _mpi_command(np_) + [sys.executable, "-m", "tribolmp.lammps.mca", str(out)] + (["--resume"] if resume else [])
+        cmd = (
+            _mpi_command(np_)
+            + [sys.executable, "-m", "tribolmp.lammps.mca", str(out)]
+            + (["--resume"] if resume else [])
+        )
         env = {k: v for k, v in os.environ.items() if k != "LD_LIBRARY_PATH"}
-        proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
+        proc = subprocess.run(cmd, capture_output=True, text=True, env=env, check=False)
         if proc.returncode != 0:
             last = (proc.stderr.strip().splitlines() or ["(no output)"])[-1]
             raise RunError(f"MCA run under mpiexec -n {np_} failed: {last}")
@@ -579,12 +708,22 @@ def _finish(out: Path, counters: dict[str, Any], t0: float) -> Result:
         nprocs=counters["nprocs"],
         nit=counters["final_step"],
         method="lammps/" + meta["params"]["bond_style"],
-        units={"mu": "1", "mu_err": "1", "layer_depth_m": "m", "diffusion_m2_s": "m^2/s", "transfer_rate": "1/m",
-               "atom_steps_per_s": "1/s", "time_s": "s", "wall_time_s": "s"},
+        units={
+            "mu": "1",
+            "mu_err": "1",
+            "layer_depth_m": "m",
+            "diffusion_m2_s": "m^2/s",
+            "transfer_rate": "1/m",
+            "atom_steps_per_s": "1/s",
+            "time_s": "s",
+            "wall_time_s": "s",
+        },
     )
     fr = np.loadtxt(out / "friction.csv", delimiter=",", skiprows=1, ndmin=2)
     half = fr[fr[:, 0] >= 0.5 * fr[-1, 0]]
-    res["mu_raw"] = float(half[:, 1].mean() / half[:, 2].mean()) if half[:, 2].mean() > 0 else float("nan")
+    res["mu_raw"] = (
+        float(half[:, 1].mean() / half[:, 2].mean()) if half[:, 2].mean() > 0 else float("nan")
+    )
     rates = _rates(out)
     if rates is not None:
         for key in ("mu", "mu_err", "layer_depth_m", "diffusion_m2_s", "transfer_rate"):
@@ -593,8 +732,16 @@ def _finish(out: Path, counters: dict[str, Any], t0: float) -> Result:
         res["rates"] = rates
         res["message"] = "run finished; rates.json written"
     else:
-        res.update(mu=res["mu_raw"], mu_err=None, layer_depth_m=None, diffusion_m2_s=None, transfer_rate=None,
-                   rates_path=None, status=1, message="run finished; tribolmp.analysis.rates not available, mu from friction.csv")
+        res.update(
+            mu=res["mu_raw"],
+            mu_err=None,
+            layer_depth_m=None,
+            diffusion_m2_s=None,
+            transfer_rate=None,
+            rates_path=None,
+            status=1,
+            message="run finished; tribolmp.analysis.rates not available, mu from friction.csv",
+        )
     return res
 
 

@@ -238,7 +238,6 @@ def contact_lengths(f: np.ndarray, dx: float) -> np.ndarray:
     return _edge_weights(f, dx, lengths=True)
 
 
-_contact_lengths = contact_lengths  # kept: used by tribolmp.models.macro
 
 
 def _edge_weights(f: np.ndarray, dx: float, lengths: bool) -> np.ndarray:
@@ -298,7 +297,7 @@ def contact_length(x, g, d) -> float:
     For an axisymmetric profile it is ``2 a`` (the contact diameter).
     """
     x, g, dx = _as_row(x, g)
-    return float(np.sum(_contact_lengths(float(d) - g, dx)))
+    return float(np.sum(contact_lengths(float(d) - g, dx)))
 
 
 def contact_radius(x, g, d) -> float:
@@ -586,7 +585,7 @@ class TangentialMDR:
         contact = f > 0
         du = float(u) - self.u
         w = spring_widths(f, self.dx)  # carries the normal force
-        ln = _contact_lengths(f, self.dx)  # carries the tangential stiffness
+        ln = contact_lengths(f, self.dx)  # carries the tangential stiffness
         kept = contact & self.in_contact
         s = np.where(kept, self.s + du, 0.0)
         with np.errstate(invalid="ignore", divide="ignore"):

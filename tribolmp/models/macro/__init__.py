@@ -15,6 +15,8 @@ Scene adapters: :func:`params_from_scene`, :func:`stick_slip_from_scene`,
 
 from __future__ import annotations
 
+import numpy as np
+
 from ...errors import ParameterError
 from .contact import ContactSprings, profile_from_geometry
 from .friction import (
@@ -71,25 +73,35 @@ def params_from_scene(scene, **overrides) -> StickSlipParams:
     return StickSlipParams(**kw)
 
 
-def contact_from_scene(scene, *, mu: float | None = None, n_springs: int | None = None) -> ContactSprings:
+def contact_from_scene(scene, *, mu: float | None = None, n_springs: int | None = None, rng=None) -> ContactSprings:
     """The MDR spring row of the scene's contact at its normal load.
 
-    ``[geometry].profile`` sphere/cone/flat maps directly; ``rough`` uses the
-    sphere of ``[geometry].radius`` (the rough-surface stiffness enters the
-    chain through an explicit ``contact_stiffness`` instead).
+    ``[geometry].profile`` sphere/cone/flat maps directly.  ``rough`` with an
+    ``rng`` (numpy Generator) and a ``[roughness]`` section draws one random 1D
+    MDR profile of the contact model (``rough.mdr_profiles_from_psd``,
+    ``grid_points`` springs at ``pixel_size``); without an ``rng`` it uses
+    the sphere of ``[geometry].radius``.
     """
     geo = scene.geometry
-    kind = geo.profile if geo.profile in ("sphere", "cone", "flat") else "sphere"
     E, G = scene.effective_modulus, scene.effective_shear_modulus
+    mu = scene.load.friction_coefficient if mu is None else mu
+    if geo.profile == "rough" and rng is not None and scene.roughness is not None:
+        from ..contact.rough import mdr_profiles_from_psd, self_affine_psd
+
+        r = scene.roughness
+        psd = self_affine_psd(r.rms_height, r.hurst, r.rolloff_wavelength, r.short_cutoff_wavelength)
+        x, g = mdr_profiles_from_psd(psd, n_springs or r.grid_points, r.pixel_size, 1, rng)
+        return ContactSprings(x, np.asarray(g)[0], E, G, mu)
+    kind = geo.profile if geo.profile in ("sphere", "cone", "flat") else "sphere"
     n = n_springs or max(3, min(scene.contact.springs, 2001))
     x, g = profile_from_geometry(kind, max(scene.load.normal_force, 1e-6), E, n_springs=n, radius=geo.radius,
                                  half_angle_deg=geo.half_angle_deg)
-    return ContactSprings(x, g, E, G, scene.load.friction_coefficient if mu is None else mu)
+    return ContactSprings(x, g, E, G, mu)
 
 
 def stick_slip_from_scene(scene, mu: float | None = None, contact_law: str = "rigid", *,
                           law: FrictionLaw | None = None, contact_stiffness: float | None = None,
-                          method: str = "auto", **overrides):
+                          method: str = "auto", rng=None, **overrides):
     """Chain entry point: stick-slip of the scene's body.
 
     Parameters
@@ -107,6 +119,9 @@ def stick_slip_from_scene(scene, mu: float | None = None, contact_law: str = "ri
         Constant contact stiffness (N/m) instead of the MDR one.
     method : str
         Integrator (see :func:`stick_slip`).
+    rng : numpy.random.Generator, optional
+        Draws the rough MDR profile for ``[geometry].profile = "rough"``
+        (see :func:`contact_from_scene`).
     **overrides
         Fields of :class:`StickSlipParams`.
     """
@@ -121,16 +136,16 @@ def stick_slip_from_scene(scene, mu: float | None = None, contact_law: str = "ri
         overrides["contact_stiffness"] = float(contact_stiffness)
     elif contact_law == "mdr":
         p0 = params_from_scene(scene, **overrides)
-        kc = contact_from_scene(scene, mu=law.mu_s).stiffness_table(max(p0.normal_force, 1e-9))
+        kc = contact_from_scene(scene, mu=law.mu_s, rng=rng).stiffness_table(max(p0.normal_force, 1e-9))
     params = params_from_scene(scene, **overrides)
     return stick_slip(params, law, method=method, contact_stiffness=kc)
 
 
 def oscillation_from_scene(scene, amplitude: float, *, frequency: float | None = None, cycles: int = 3,
-                           steps_per_cycle: int = 200, mu: float | None = None):
+                           steps_per_cycle: int = 200, mu: float | None = None, rng=None):
     """Chain entry point: prescribed tangential oscillation of the scene's contact (micro-slip loops)."""
     ts = scene.tribospectroscopy
     f = frequency or (ts.frequency if ts is not None else 65e3)
     p = OscillationParams(normal_force=scene.load.normal_force, amplitude=amplitude, frequency=f, cycles=cycles,
                           steps_per_cycle=steps_per_cycle)
-    return oscillate(p, contact_from_scene(scene, mu=mu))
+    return oscillate(p, contact_from_scene(scene, mu=mu, rng=rng))

