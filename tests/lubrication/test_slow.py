@@ -36,7 +36,8 @@ def test_xy_power_law_shear_thinning_converges():
 def test_polishing_larger_map_preston_and_smoothing():
     out = []
     for p in (1e5, 1e6):
-        res = polish(PolishParams(grid_points=96, steps=100, duration=60.0, pressure=p), rng=np.random.default_rng(11))
+        # 6 s: at 1e6 Pa the surface is already polished to ~Sq/10 and sub-steps stay few
+        res = polish(PolishParams(grid_points=64, steps=20, duration=6.0, pressure=p), rng=np.random.default_rng(11))
         out.append(res.removal_rate / (p * 0.5))
         assert res.sq[-1] < res.sq[0]
         assert res.mass_balance_error < 1e-9

@@ -28,6 +28,9 @@ out ~us, particle transit ~ms, polishing ~s-min):
 4. **Removal (Archard).**  Volume k F v f dt / n is taken from each pixel of
    the particle's line (n pixels per line; bilinear weights across lines,
    volume conserving).
+5. **Sub-steps.**  Each output step is subdivided so that the non-uniform part
+   of the cut stays below ``max_cut`` times max(Sq, Hertz indentation); larger
+   cuts would dig grooves along the particle lines instead of removing peaks.
 
 Preston's law (removal rate = k p v) therefore holds while t_s << t_r and
 fails when the film carries the load (large eta v / p); the tests check both.
@@ -90,7 +93,9 @@ class PolishParams:
     E_star : float
         Effective modulus of particle/workpiece contact (Pa).
     max_cut : float
-        Largest local depth removed in one sub-step, as a fraction of the current Sq
+        Largest non-uniform part of the depth removed in one sub-step (max minus
+        mean of the cut), as a fraction of the larger of
+        the current Sq and the mean Hertz indentation of the loaded particles
         (steps are subdivided automatically; ``nit`` counts the sub-steps).
     """
 
@@ -217,6 +222,7 @@ def polish(params: PolishParams, *, rng, h0=None, snapshots: int = 5) -> Result:
     load = p.pressure * p.area
     dt = p.duration / p.steps
     t_r = p.pad_length / p.velocity
+    c_hertz = 4.0 / 3.0 * p.E_star * math.sqrt(a)
     res = Result(method="mean-field-pairlaw-archard")
     t = np.linspace(0.0, p.duration, p.steps + 1)
     sq, sa, removed, vol, fc, load_err = (np.zeros(p.steps + 1) for _ in range(6))
@@ -247,8 +253,13 @@ def polish(params: PolishParams, *, rng, h0=None, snapshots: int = 5) -> Result:
                 cut = np.zeros_like(h)
                 np.add.at(cut, (slice(None), j0), ((1.0 - ty) * rate).T / (dx * dx))
                 np.add.at(cut, (slice(None), j1), (ty * rate).T / (dx * dx))
-                limit = p.max_cut * h.std()
-                step = left if cut.max() * left <= limit else max(limit / cut.max(), dt * 1e-6)
+                # the cut per sub-step must be small against the roughness or, once the
+                # surface is smooth, against the Hertz indentation over which the load spreads
+                delta = float(np.sum(F * (F / c_hertz) ** (2.0 / 3.0)) / F.sum())
+                limit = p.max_cut * max(h.std(), delta)
+                # only the non-uniform part of the cut changes the topography
+                dev = float(cut.max() - cut.mean())
+                step = left if dev * left <= limit else max(limit / dev, dt * 1e-6)
                 step = min(step, left)
                 h -= cut * step
                 removed[k] += rate.sum() * step
