@@ -21,12 +21,13 @@ Usage: ``python benchmarks/contact_speed_vs_error.py [--quick] [--out DIR]``.
 from __future__ import annotations
 
 import argparse
-import csv
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
+
+from tribolmp.benchmarking import print_table, write_csv
 
 
 def _best_time(fun, repeat):
@@ -143,26 +144,6 @@ def rough_table(quick: bool) -> list[dict]:
     return rows
 
 
-def _write(path: Path, rows: list[dict]) -> None:
-    keys = []
-    for r in rows:
-        keys += [k for k in r if k not in keys]
-    with path.open("w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=keys)
-        w.writeheader()
-        w.writerows(rows)
-
-
-def _print(title: str, rows: list[dict]) -> None:
-    print(f"\n== {title}")
-    if not rows:
-        return
-    keys = list(rows[0])
-    print(" ".join(f"{k[:16]:>16s}" for k in keys))
-    for r in rows:
-        print(" ".join(f"{r.get(k, ''):>16.5g}" if isinstance(r.get(k), (float, np.floating)) else f"{str(r.get(k, '')):>16s}" for k in keys))
-
-
 def _plot(rows: list[dict], path: Path) -> None:
     import matplotlib
 
@@ -197,17 +178,17 @@ def main(argv=None) -> int:
     suffix = "_quick" if args.quick else ""
     if "axisymmetric" not in skip:
         rows = axisymmetric_table(args.quick)
-        _print("MDR (springs) and BEM (grid) against analytic references", rows)
-        _write(out / f"contact_speed_vs_error{suffix}.csv", rows)
+        print_table("MDR (springs) and BEM (grid) against analytic references", rows)
+        write_csv(out / f"contact_speed_vs_error{suffix}.csv", rows)
         _plot(rows, out / f"contact_speed_vs_error{suffix}.png")
     if "tamaas" not in skip:
         rows = tamaas_table(args.quick)
-        _print("BEM against tamaas (periodic rough surface)", rows)
-        _write(out / f"contact_bem_vs_tamaas{suffix}.csv", rows)
+        print_table("BEM against tamaas (periodic rough surface)", rows)
+        write_csv(out / f"contact_bem_vs_tamaas{suffix}.csv", rows)
     if "rough" not in skip:
         rows = rough_table(args.quick)
-        _print("Rough surface: MDR ensemble (16) against BEM stiffness", rows)
-        _write(out / f"contact_rough_mdr_vs_bem{suffix}.csv", rows)
+        print_table("Rough surface: MDR ensemble (16) against BEM stiffness", rows)
+        write_csv(out / f"contact_rough_mdr_vs_bem{suffix}.csv", rows)
     return 0
 
 

@@ -21,10 +21,11 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import csv
 import math
 import time
 from pathlib import Path
+
+from tribolmp.benchmarking import write_csv
 
 
 def _time(fn, *, min_time=0.05, repeats=3):
@@ -138,15 +139,9 @@ def main(argv=None) -> int:
 
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
-    with open(out, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    write_csv(out, rows)
     pl_out = out.with_name(out.stem + "_powerlaw.csv")
-    with open(pl_out, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(pl_rows[0]))
-        w.writeheader()
-        w.writerows(pl_rows)
+    write_csv(pl_out, pl_rows)
 
     print(f"{'model':<28}{'h/R':>9} {'resolution':<24}{'time (s)':>11}{'err vs Reynolds':>17}{'err vs Stokes':>15}")
     for r in rows:
@@ -167,10 +162,7 @@ def main(argv=None) -> int:
     for r in pl_rows:
         print(f"{r['n']:>7.3f}{r['cells']:>7d}{r['nit']:>10d}{r['time_s']:>11.3e}{r['closed_form_time_s']:>17.3e}{r['rel_error']:>+12.2e}")
     sl_out = out.with_name(out.stem + "_sliding.csv")
-    with open(sl_out, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(sl_rows[0]))
-        w.writeheader()
-        w.writerows(sl_rows)
+    write_csv(sl_out, sl_rows)
     print()
     print("sliding drag: d D / d ln(R/h) / (6 pi eta R U) from Reynolds x-y (GCB: 8/15 = 0.5333, Eq. 12: 1/3)")
     print(f"{'cells':>7}{'time (s)':>11}{'GCB (s)':>11}{'slope':>9}{'GCB err':>10}{'Eq.12 err':>11}")

@@ -27,7 +27,6 @@ Usage: ``python benchmarks/mca_throughput.py [--quick] [--out CSV]``.
 from __future__ import annotations
 
 import argparse
-import csv
 import json
 import os
 import re
@@ -37,6 +36,8 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+
+from tribolmp.benchmarking import write_csv
 
 #: (label, box_length m, body_height m, steps)
 SIZES = (("2k", 150e-9, 30e-9, 6000), ("10k", 400e-9, 62e-9, 1500), ("40k", 800e-9, 125e-9, 400))
@@ -185,10 +186,7 @@ def main(argv: list[str] | None = None) -> int:
                     f"{row['atom_steps_per_s'] / 1e6:>13.2f} {row['ratio_vs_python_1rank']:>7.2f} {diff:>12.2e} "
                     f"{row['load_avg_1min']:>5.1f}"
                 )
-    with csv_path.open("w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    write_csv(csv_path, rows)
     print(f"wrote {csv_path}")
     return 0
 

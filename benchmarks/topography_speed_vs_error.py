@@ -26,7 +26,6 @@ Usage: ``python benchmarks/topography_speed_vs_error.py [--quick] [--out DIR]``.
 from __future__ import annotations
 
 import argparse
-import csv
 import math
 import time
 import tracemalloc
@@ -35,6 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
+from tribolmp.benchmarking import print_table, write_csv
 from tribolmp.models.topography import TopographyParams, evolve, expected_periodogram, make_stepper, spectra
 from tribolmp.models.topography.spde import mode_ratios
 
@@ -123,22 +123,6 @@ def table_sizes(quick):
     return rows
 
 
-def write(rows, path):
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-
-
-def show(title, rows):
-    print(f"\n## {title}")
-    keys = list(rows[0])
-    print(" | ".join(keys))
-    for r in rows:
-        print(" | ".join(f"{r[k]:.4g}" if isinstance(r[k], float) else str(r[k]) for k in keys))
-
-
 def main(argv=None):
     """Run the benchmark; ``--quick`` for a small version.  Returns 0."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -156,8 +140,8 @@ def main(argv=None):
         "sizes": ("1D exact OU: throughput and band test vs exact theory", table_sizes(args.quick)),
     }
     for key, (title, rows) in tables.items():
-        show(title, rows)
-        write(rows, out / f"{NAME}_{key}.csv")
+        print_table(title, rows)
+        write_csv(out / f"{NAME}_{key}.csv", rows)
     print(f"\nCSV written to {out}/{NAME}_*.csv")
     return 0
 

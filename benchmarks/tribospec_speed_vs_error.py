@@ -19,30 +19,15 @@ Usage: ``python benchmarks/tribospec_speed_vs_error.py [--quick] [--out DIR]``.
 from __future__ import annotations
 
 import argparse
-import csv
 import time
 from pathlib import Path
 
 import numpy as np
 
+from tribolmp.benchmarking import print_table, write_csv
+
 E_STAR = 206e9 / (2 * (1 - 0.3**2))
 G_STAR = 1.0 / (2 * (2 - 0.3) / (4 * 206e9 / 2.6))
-
-
-def _write(rows, path: Path):
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with path.open("w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-
-
-def _print(title, rows):
-    print(f"\n== {title}")
-    keys = list(rows[0])
-    print("  ".join(f"{k:>16s}" for k in keys))
-    for r in rows:
-        print("  ".join(f"{v:>16.4g}" if isinstance(v, float) else f"{str(v):>16s}" for v in r.values()))
 
 
 def _timed(fun, repeat=1):
@@ -148,8 +133,8 @@ def main(argv=None) -> int:
     for name, fun in (("tribospec_curve", curve_table), ("tribospec_multirate", multirate_table),
                       ("tribospec_stiff", stiff_table)):
         rows = fun(args.quick)
-        _print(name, rows)
-        _write(rows, out / f"{name}{'_quick' if args.quick else ''}.csv")
+        print_table(name, rows)
+        write_csv(out / f"{name}{'_quick' if args.quick else ''}.csv", rows)
     return 0
 
 

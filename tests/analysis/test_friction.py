@@ -7,7 +7,7 @@ import pytest
 
 from tribolmp.analysis.friction import FrictionCoefficient
 from tribolmp.analysis.outputs import read_friction_csv
-from tribolmp.analysis.synthetic import make_friction
+from tribolmp.analysis.synthetic import make_friction, make_oscillating_friction
 from tribolmp.errors import DataFileError
 
 
@@ -62,3 +62,48 @@ def test_no_contact_is_an_error():
             "top_x_m": np.zeros(20)}
     with pytest.raises(DataFileError, match="normal_N"):
         FrictionCoefficient(data).run()
+
+
+def _second_half_ratio(fr):
+    # the plain estimate the driver prints as mu_raw: mean F / mean N over t >= t_end / 2
+    h = fr["time_s"] >= 0.5 * fr["time_s"][-1]
+    return fr["friction_N"][h].sum() / fr["normal_N"][h].sum()
+
+
+@pytest.mark.parametrize("phase", [0.0, 1.0, 2.0, 3.0, 4.0, 5.0])
+def test_short_stick_slip_run_is_not_called_steady(tmp_path, phase):
+    """The smoke-run failure: mu(t) swings by +-0.45 with a period of half the run (1 ns, 200 rows).
+
+    The old code took the MSER start (0.1 ns), averaged F/N after it and reported steady = True with a
+    blocking error that had not converged (a lower bound)."""
+    exp = make_oscillating_friction(tmp_path, np.random.default_rng(11), phase=phase)
+    r = FrictionCoefficient(tmp_path).run().results
+    assert not r.steady and r.status == 1 and "NOT a steady value" in r.message
+    assert r.estimator == "second_half_mean" and np.isnan(r.steady_start_s)
+    # the fallback is exactly the plain second-half ratio of mean forces (same float sums, round-off only)
+    assert r.mu == pytest.approx(_second_half_ratio(read_friction_csv(tmp_path)), rel=1e-12)
+    assert r.window_start_s == pytest.approx(0.5e-9, abs=5e-12)  # first row at or after t_end / 2
+    # the widened error bar covers the true long-run mean: the half-window swing is the error scale
+    assert abs(r.mu - exp["mu"]) <= r.mu_err
+
+
+def test_steady_needs_enough_independent_samples(tmp_path, rng):
+    """A clean AR(1) series whose window is only ~15 correlation times long is not called steady."""
+    make_friction(tmp_path, rng, n=300, phi=0.98, sigma_eps=0.01, transient=0.0)
+    r = FrictionCoefficient(tmp_path).run().results
+    # tau_int = (1 + phi) / (1 - phi) = 99 samples: 300 samples hold ~3 independent ones (< 20)
+    assert not r.steady and r.estimator == "second_half_mean"
+    assert r.n_independent < 20
+
+
+def test_ratio_of_mean_forces_not_mean_of_ratios(tmp_path, rng):
+    """Constant friction force under a normal force swinging by +-50 %: <F>/<N> = mu, <F/N> = 1.155 mu."""
+    exp = make_oscillating_friction(tmp_path, rng, n=4000, dt=1e-12, mu=0.2, amplitude=0.0, period=2e-11,
+                                    normal_amplitude=0.5, noise=0.002)
+    r = FrictionCoefficient(tmp_path).run().results
+    # blocking counts the deterministic swing of F - mu N (period 20 samples) as noise, so mu_err (~2.4e-3)
+    # is conservative; the true error is the white-noise SE (~3e-5) plus < 1e-4 from the partial last period
+    assert abs(r.mu - exp["mu"]) < 1e-4 + 4 * 3e-5
+    # the mean of ratios (what the old code reported) is 0.031 higher: > 8 mu_err, excluded by the error bar too
+    assert exp["mean_of_ratios"] - r.mu > 8 * r.mu_err
+    assert r.steady and r.estimator == "steady_mean"

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from tribolmp.analysis.rates import RATES_UNITS, compute_rates
-from tribolmp.analysis.synthetic import make_friction, make_transfer, make_walkers
+from tribolmp.analysis.synthetic import make_friction, make_oscillating_friction, make_transfer, make_walkers
 
 CONTRACT = ("mu", "mu_err", "layer_depth_m", "diffusion_m2_s", "transfer_rate", "wear_rate", "detachment_rate",
             "reattachment_rate", "step_length_m", "step_time_s", "time_s", "units")
@@ -73,3 +73,20 @@ def test_no_contact_still_writes_rates(tmp_path):
     r = compute_rates(tmp_path)
     assert r["mu"] is None and any(w.startswith("friction:") for w in r["warnings"])
     assert r["transfer_rate"] is not None
+
+
+def test_short_run_without_steady_state_is_flagged(tmp_path):
+    """rates.json of a run whose mu(t) swings over half the run: mu_steady false, no steady start, and the
+    trajectory analyses use the same (second-half) window as the flagged mu."""
+    rng = np.random.default_rng(6)
+    make_walkers(tmp_path, rng, n_walkers=100, n_frames=40)  # dump frames every 0.1 ns up to 4 ns
+    make_oscillating_friction(tmp_path, rng, n=200, dt=2e-11, period=1.8e-9)  # same 4 ns, 2.2 swings
+    r = compute_rates(tmp_path)
+    on_disk = json.loads((tmp_path / "rates.json").read_text())
+    assert on_disk["mu_steady"] is False and on_disk["steady_start_s"] is None
+    assert on_disk["mu_estimator"] == "second_half_mean"
+    assert any("NOT a steady value" in w for w in on_disk["warnings"])
+    # the window starts at the first row at or after t_end / 2 = 2 ns; the frames analysed start there too
+    assert on_disk["mu_window_start_s"] == pytest.approx(2e-9, rel=1e-9)
+    assert r["analysis_start_s"] == pytest.approx(2e-9, rel=1e-6)  # dump times are float32-exact to ~1e-7
+    assert on_disk["units"]["mu_window_start_s"] == "s"

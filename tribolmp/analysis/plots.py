@@ -54,7 +54,7 @@ def _pyplot():
 
 
 def plot_friction(source, path=None, *, ax=None, title: str | None = None):
-    """Plot mu(t) with the detected steady start and the steady mean +- error.
+    """Plot mu(t) with the averaging window's start and the mean +- error (marked when not steady).
 
     Parameters
     ----------
@@ -80,10 +80,13 @@ def plot_friction(source, path=None, *, ax=None, title: str | None = None):
     fig, ax, own = _figure(plt, ax, path, (6.4, 3.6))
     t_ns = np.asarray(res.time_s) / 1e-9
     ax.plot(t_ns, res.mu_t, lw=0.6, color="#1f77b4", label=r"$\mu(t)=F_t/F_n$")
-    t0 = res.steady_start_s / 1e-9
-    ax.axvline(t0, color="k", ls=":", lw=1, label=f"steady from {t0:.3g} ns")
+    t0 = res.window_start_s / 1e-9
+    steady = bool(res.steady)
+    what = f"steady from {t0:.3g} ns" if steady else f"NO steady state; mean from {t0:.3g} ns"
+    ax.axvline(t0, color="k", ls=":", lw=1, label=what)
     ax.axhspan(res.mu - res.mu_err, res.mu + res.mu_err, color="#d62728", alpha=0.3)
-    ax.axhline(res.mu, color="#d62728", lw=1.2, label=rf"$\mu$ = {res.mu:.3f} $\pm$ {res.mu_err:.3f}")
+    ax.axhline(res.mu, color="#d62728", lw=1.2, ls="-" if steady else "--",
+               label=rf"$\mu$ = {res.mu:.3f} $\pm$ {res.mu_err:.3f}" + ("" if steady else " (not steady)"))
     ax.set_xlabel("time (ns)")
     ax.set_ylabel(r"friction coefficient $\mu$")
     ax.legend(loc="best", fontsize=8)

@@ -61,6 +61,8 @@ RATES_UNITS = {
     "atom_steps_per_s": "1/s",
     "time_s": "s",
     "steady_start_s": "s",
+    "mu_window_start_s": "s",
+    "mu_n_independent": "1",
     "analysis_start_s": "s",
     "velocity_m_s": "m/s",
     "pressure_Pa": "Pa",
@@ -145,7 +147,9 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
     u = open_trajectory(out, meta)
     frames_all, steps = resume_frames(u)
     times = steps * meta.dt_s
-    t_start = start_s if start_s is not None else (fc.steady_start_s if fc is not None else 0.0)
+    # the trajectory analyses use the same window as mu: the steady part, or (no steady state) the
+    # second half that the flagged fallback estimate averages
+    t_start = start_s if start_s is not None else (fc.window_start_s if fc is not None else 0.0)
     sel, note = steady_frames(times, t_start)
     if note:
         warnings_.append(note)
@@ -199,6 +203,9 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
         "mu_err": get(fc, "mu_err"),
         "mu_steady": bool(fc.steady) if fc is not None else False,
         "steady_start_s": get(fc, "steady_start_s"),
+        "mu_estimator": None if fc is None else str(fc.estimator),
+        "mu_window_start_s": get(fc, "window_start_s"),
+        "mu_n_independent": get(fc, "n_independent"),
         "layer_depth_m": layer,
         "layer_offset_m": get(vp, "layer_offset_m"),
         "layer_resolved": resolved,
@@ -245,7 +252,10 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
         "bin_width_m": bin_width_m if bin_width_m is not None else d,
         "transfer_window_frames": None if mt is None else int(mt.window),
         "definitions": {
-            "mu": "mean of F_t/F_n after the MSER-5 steady start; mu_err: blocking standard error",
+            "mu": ("sum F_t / sum F_n over the window starting at mu_window_start_s: the MSER-5 steady start "
+                   "when mu_steady (mu_estimator 'steady_mean'), else the second half of the run "
+                   "('second_half_mean', NOT steady; steady_start_s null); mu_err: blocking standard error, "
+                   "widened to half the difference of the window's two halves when not steady"),
             "layer_depth_m": "10-90 % width of the isotonic fit of v_x(h)/V_slider",
             "diffusion_m2_s": "MSD = 2 n D t of surface automata minus their body group's mean, n lateral dims",
             "transfer_rate": "automata joining the other body's motion per surface automaton per metre slid",

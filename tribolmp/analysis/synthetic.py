@@ -30,6 +30,7 @@ __all__ = [
     "make_walkers",
     "make_transfer",
     "make_friction",
+    "make_oscillating_friction",
     "ar1_mean_stderr",
 ]
 
@@ -338,6 +339,34 @@ def make_transfer(out_dir, rng, *, n_per_row=20, n_frames=40, velocity=10.0, int
         "wear_rate": n_tr / (n_surface * span),
         "velocity_m_s": velocity,
     }
+
+
+def make_oscillating_friction(out_dir, rng, *, n=200, dt=5e-12, mu=0.15, amplitude=0.45, period=0.45e-9,
+                              normal=2e-8, normal_amplitude=0.0, noise=0.01, phase=0.0, velocity=5.0) -> dict:
+    """friction.csv with periodic forces: F_t = F_n0 (mu + a sin(w t + phase) + noise), F_n = F_n0 (1 + b sin(w t)).
+
+    ``amplitude`` a of order mu with a ``period`` of about half the run mimics
+    the stick-slip-like swing of a short MCA run (the 1 ns smoke run: mu(t)
+    between -0.5 and 0.7 with a period of ~0.45 ns): no steady mean can be
+    resolved.  With a = 0 and ``normal_amplitude`` b > 0 the friction force is
+    constant while the normal force swings, so the mean of F_t/F_n exceeds the
+    ratio of the mean forces by the factor 1/sqrt(1 - b^2) (Jensen).
+
+    Returns
+    -------
+    dict
+        ``mu``: the long-run ratio of mean forces <F_t>/<F_n> (exactly ``mu``,
+        the sines average out over whole periods); ``mean_of_ratios``: the
+        long-run mean of F_t/F_n for a = 0 (mu / sqrt(1 - b^2)); ``period_s``.
+    """
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    t = (np.arange(n) + 1) * dt
+    w = 2.0 * math.pi / period
+    fn = normal * (1.0 + normal_amplitude * np.sin(w * t))
+    ft = normal * (mu + amplitude * np.sin(w * t + phase) + noise * rng.standard_normal(n))
+    write_friction_csv(out / "friction.csv", t, ft, fn, velocity * t)
+    return {"mu": mu, "mean_of_ratios": mu / math.sqrt(1.0 - normal_amplitude**2), "period_s": period}
 
 
 def ar1_mean_stderr(phi: float, sigma_eps: float, n: int) -> float:

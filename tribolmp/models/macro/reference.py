@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-__all__ = ["stick_slip_cycle", "free_oscillation", "mindlin_loading", "mindlin_loop", "mindlin_dissipation"]
+__all__ = ["squeeze_approach_gap", "vibrated_coulomb_mean_force", "stick_slip_cycle", "free_oscillation", "mindlin_loading", "mindlin_loop", "mindlin_dissipation"]
 
 
 def stick_slip_cycle(mass: float, stiffness: float, velocity: float, normal_force: float,
@@ -95,3 +95,25 @@ def mindlin_dissipation(u_amp: float, mu_n: float, u_slip: float) -> float:
 
     return quad(lambda u: float(mindlin_loop(u, u_amp, mu_n, u_slip, "reload") - mindlin_loop(u, u_amp, mu_n, u_slip, "unload")),
                 -u_amp, u_amp, epsabs=0, epsrel=1e-12)[0]
+
+
+def squeeze_approach_gap(t, gap0: float, load: float, radius: float, viscosity: float):
+    """Gap (m) of a massless sphere pressed by a constant load through a squeeze film.
+
+    ``W = alpha V / h`` with ``alpha = 6 pi eta R^2`` (PHYSICS.md, corrected
+    Eq. 11) gives ``d ln h / dt = -W / alpha``, so ``h = h0 exp(-W t / alpha)``:
+    the film thins exponentially and never reaches zero.
+    """
+    alpha = 6.0 * math.pi * viscosity * radius**2
+    return gap0 * np.exp(-load * np.asarray(t, dtype=float) / alpha)
+
+
+def vibrated_coulomb_mean_force(nu):
+    """Cycle-mean Coulomb force (in units of the sliding force) under ``v + a w cos(w t)``.
+
+    A rigid-plastic contact (no elasticity) sliding at mean speed ``v`` while
+    vibrated in the sliding direction with velocity amplitude ``a w``:
+    ``<sign(v + a w cos)> = (2/pi) arcsin(nu)``, ``nu = v/(a w)``, and 1 for ``nu >= 1``.
+    """
+    nu = np.asarray(nu, dtype=float)
+    return np.sign(nu) * np.where(np.abs(nu) >= 1.0, 1.0, 2.0 / np.pi * np.arcsin(np.clip(np.abs(nu), 0.0, 1.0)))
