@@ -99,14 +99,18 @@ def plot_snapshot(out_dir, path=None, *, ax=None, frame: int = -1, title: str | 
                   slab_m: float | None = None):
     """Draw the automata of one dump frame coloured by body (like the seed's Fig. 9).
 
-    Automata are drawn as discs of their true diameter.  In 3D only a slab
-    ``slab_m`` thick (default two diameters) in the middle of the periodic
-    z-extent is drawn.  The original interface (frame 0) is marked.
+    Automata are drawn as discs of their true diameter (twice the dump's
+    ``radius`` column, in data units, so they keep their size at any figure
+    size or dpi), coloured by body; discs cut by the periodic x boundary are
+    completed by their periodic image.  In 3D only a slab ``slab_m`` thick
+    (default two diameters) in the middle of the periodic z-extent is drawn.
+    The original interface (frame 0) is marked.
 
     Parameters
     ----------
     out_dir : str or Path
-        MCA output directory.
+        MCA output directory, or its ``traj.lammpstrj`` (``meta.json`` must sit
+        next to it).
     path : str or Path, optional
         PNG to write (with its own figure).
     ax : matplotlib Axes, optional
@@ -129,6 +133,9 @@ def plot_snapshot(out_dir, path=None, *, ax=None, frame: int = -1, title: str | 
     from .outputs import open_trajectory, read_meta
     from .profiles import interface_height
 
+    out_dir = Path(out_dir)
+    if out_dir.is_file():
+        out_dir = out_dir.parent
     meta = read_meta(out_dir)
     u = open_trajectory(out_dir, meta)
     ts0 = u.trajectory[0]
@@ -146,18 +153,26 @@ def plot_snapshot(out_dir, path=None, *, ax=None, frame: int = -1, title: str | 
     plt = _pyplot()
     box = ts.dimensions[:3]
     lo = ts.data["box_lo"]
-    xs, ys = pos[keep, 0], pos[keep, meta.normal_axis]
+    xs, ys, r = pos[keep, 0], pos[keep, meta.normal_axis], rad[keep]
     colours = np.array([BODY_COLOURS.get(m, ("#999999", ""))[0] for m in mol[keep]])
+    # periodic images of the discs that the x boundary cuts
+    x0, x1 = lo[0], lo[0] + box[0]
+    left, right = xs - r < x0, xs + r > x1
+    xs = np.concatenate([xs, xs[left] + box[0], xs[right] - box[0]])
+    ys = np.concatenate([ys, ys[left], ys[right]])
+    r = np.concatenate([r, r[left], r[right]])
+    colours = np.concatenate([colours, colours[left], colours[right]])
+    margin = float(r.max()) + 0.5
     width = 9.0
-    aspect = (ys.max() - ys.min() + 2) / box[0]
+    aspect = (ys.max() - ys.min() + 2 * margin) / box[0]
     fig, ax, own = _figure(plt, ax, path, (width, max(2.5, width * aspect + 0.8)))
-    d = 2 * rad[keep]
-    coll = EllipseCollection(d, d, np.zeros_like(d), units="xy", offsets=np.column_stack([xs, ys]),
+    # EllipseCollection with units="xy" takes full widths in data units (nm): true automaton size
+    coll = EllipseCollection(2 * r, 2 * r, np.zeros_like(r), units="xy", offsets=np.column_stack([xs, ys]),
                              offset_transform=ax.transData, facecolors=colours, edgecolors="none")
     ax.add_collection(coll)
     ax.axhline(y0, color="k", ls="--", lw=0.8)
-    ax.set_xlim(lo[0], lo[0] + box[0])
-    ax.set_ylim(ys.min() - 1.5, ys.max() + 1.5)
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(ys.min() - margin, ys.max() + margin)
     ax.set_aspect("equal")
     ax.set_xlabel("x (nm)")
     ax.set_ylabel("y (nm)")

@@ -53,6 +53,7 @@ from ..models.base import check_choice, check_range
 from ..units import to_lammps
 
 __all__ = [
+    "link_deck_variables",
     "MAX_DIAMETER",
     "MIN_DIAMETER",
     "BondCoefficients",
@@ -386,6 +387,23 @@ def map_material(spec: MaterialSpec) -> BondCoefficients:
     )
 
 
+
+#: deck variable -> BondCoefficients attribute, for the link coefficients both decks read.
+_LINK_VARIABLES = (
+    ("kn", "k_n"), ("ecrit", "eps_crit"), ("gn", "gamma_n"), ("ep", "eps_plastic"),
+    ("ks", "k_s"), ("kb", "k_b"), ("kt", "k_t"), ("fcr", "f_crit"), ("fscr", "fs_crit"),
+    ("tbcr", "tb_crit"), ("ttcr", "tt_crit"), ("gs", "gamma_s"), ("gr", "gamma_r"), ("gt", "gamma_t"),
+)
+
+
+def link_deck_variables(c: BondCoefficients) -> dict[str, str]:
+    """Deck variables (``-var name value``) of the link coefficients, in LAMMPS nano units.
+
+    Both decks (``mca_friction.in`` and ``mca_tension.in``) read the same
+    names, so they are rendered in one place.
+    """
+    return {name: f"{getattr(c, attr):.10g}" for name, attr in _LINK_VARIABLES}
+
 def _ks_ratio_for_nu(nu: float, dim: int) -> float:
     """k_s / k_n giving Poisson's ratio ``nu`` along x (monotone in the ratio)."""
     from scipy.optimize import brentq
@@ -514,20 +532,7 @@ def measure_uniaxial(
         "print_every": every,
         "erate_slow": f"{0.1 * erate:.10g}",
         "steps_slow": steps_slow,
-        "kn": f"{c.k_n:.10g}",
-        "ecrit": f"{c.eps_crit:.10g}",
-        "gn": f"{c.gamma_n:.10g}",
-        "ep": f"{c.eps_plastic:.10g}",
-        "ks": f"{c.k_s:.10g}",
-        "kb": f"{c.k_b:.10g}",
-        "kt": f"{c.k_t:.10g}",
-        "fcr": f"{c.f_crit:.10g}",
-        "fscr": f"{c.fs_crit:.10g}",
-        "tbcr": f"{c.tb_crit:.10g}",
-        "ttcr": f"{c.tt_crit:.10g}",
-        "gs": f"{c.gamma_s:.10g}",
-        "gr": f"{c.gamma_r:.10g}",
-        "gt": f"{c.gamma_t:.10g}",
+        **link_deck_variables(c),
         "comm_cut": f"{2.2 * d:.10g}",
         "modulus": f"{to_lammps(spec.youngs_modulus, 'pressure'):.10g}",
     }

@@ -37,7 +37,7 @@ from ..models.base import Result, check_int
 from ..rng import as_generator, lammps_seed
 from ..scene.fields import param, validate_dataclass
 from .decks import deck_path
-from .mapping import MaterialSpec, map_material
+from .mapping import MaterialSpec, link_deck_variables, map_material
 
 __all__ = [
     "PRESETS",
@@ -322,21 +322,8 @@ def deck_variables(
         "V": params.sliding_velocity,
         "FN": f"{fn:.10g}",
         "approach_v": params.approach_velocity,
-        "kn": f"{c.k_n:.10g}",
-        "ecrit": f"{c.eps_crit:.10g}",
-        "gn": f"{c.gamma_n:.10g}",
-        "ep": f"{c.eps_plastic:.10g}",
+        **link_deck_variables(c),
         "rebond_factor": max(params.rebond_factor, 1e-6),
-        "ks": f"{c.k_s:.10g}",
-        "kb": f"{c.k_b:.10g}",
-        "kt": f"{c.k_t:.10g}",
-        "fcr": f"{c.f_crit:.10g}",
-        "fscr": f"{c.fs_crit:.10g}",
-        "tbcr": f"{c.tb_crit:.10g}",
-        "ttcr": f"{c.tt_crit:.10g}",
-        "gs": f"{c.gamma_s:.10g}",
-        "gr": f"{c.gamma_r:.10g}",
-        "gt": f"{c.gamma_t:.10g}",
         "kc": f"{c.k_contact:.10g}",
         "gc": f"{c.gamma_contact:.10g}",
         "muc": c.mu_contact,

@@ -4,7 +4,9 @@
   stiff-capable) and prescribed oscillation with micro-slip;
 * :mod:`.friction` -- friction laws (constant, velocity weakening, tables
   from the nanoscale model);
-* :mod:`.multirate` -- cycle-averaged contact for a fast oscillation over a slow drift;
+* :mod:`.multirate` -- cycle-averaged contact for a fast oscillation over a slow drift
+  (imposed drift, or a body pulled through a spring);
+* :mod:`.normal` -- the normal approach through the optional squeeze-film damper;
 * :mod:`.contact` -- the MDR spring row under the body (uses
   :mod:`tribolmp.models.contact.mdr`);
 * :mod:`.reference` -- closed-form stick-slip cycle, Mindlin-Deresiewicz loop.
@@ -28,13 +30,27 @@ from .friction import (
     load_friction_law,
     make_friction_law,
 )
-from .multirate import AveragedContact, DriftParams, drift_under_oscillation
+from .multirate import (
+    AveragedContact,
+    DriftParams,
+    PulledParams,
+    drift_under_oscillation,
+    jenkins_mean_force,
+    pulled_under_oscillation,
+)
+from .normal import SqueezeParams, squeeze_approach, squeeze_params_from_scene
 from .rigid_body import STICK_SLIP_METHODS, OscillationParams, StickSlipParams, oscillate, stick_slip
 
 __all__ = [
     "StickSlipParams",
     "OscillationParams",
     "DriftParams",
+    "PulledParams",
+    "SqueezeParams",
+    "squeeze_approach",
+    "squeeze_params_from_scene",
+    "pulled_under_oscillation",
+    "jenkins_mean_force",
     "stick_slip",
     "oscillate",
     "drift_under_oscillation",

@@ -114,6 +114,9 @@ def squeeze_approach(params: SqueezeParams, contact=None, *, n_out: int = 201) -
 
         raise ParameterError("contact", "a ContactSprings when contact_gap > 0", None)
 
+    def gap_of(s):  # Newton trials of the implicit solver may probe huge |s|: keep h representable (> 0)
+        return h0 * math.exp(min(max(s, -700.0), 700.0))
+
     def damping(h):  # N s/m: the damper is linear in the approach speed
         return squeeze_damper_force(p.radius, p.viscosity, h, 1.0)
 
@@ -129,11 +132,11 @@ def squeeze_approach(params: SqueezeParams, contact=None, *, n_out: int = 201) -
     if m == 0.0:
         # s' = -(W - F_c) / (h c(h)):  h c(h) = alpha for the reduced damper, so s is linear in t
         def rhs(t, y):
-            h = h0 * math.exp(y[0])
+            h = gap_of(y[0])
             return [-(W - solid(h)) / (h * damping(h))]
 
         def jac(t, y):
-            h = h0 * math.exp(y[0])
+            h = gap_of(y[0])
             hc_ = h * damping(h)
             return [[stiffness(h) * h / hc_]]  # d(h c)/ds = 0 for c ~ 1/h
 
@@ -141,12 +144,12 @@ def squeeze_approach(params: SqueezeParams, contact=None, *, n_out: int = 201) -
     else:
         # y = (s, q) with q = m dh/dt / h0:  s' = q h0/(m h),  q' = (-W + F_c - c(h) h0 q / m) / h0
         def rhs(t, y):
-            h = h0 * math.exp(y[0])
+            h = gap_of(y[0])
             c = damping(h)
             return [y[1] * h0 / (m * h), (-W + solid(h) - c * h0 * y[1] / m) / h0]
 
         def jac(t, y):
-            h = h0 * math.exp(y[0])
+            h = gap_of(y[0])
             c = damping(h)
             # c ~ 1/h: dc/ds = -c
             return [[-y[1] * h0 / (m * h), h0 / (m * h)],
