@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from tribolmp.analysis.plots import plot_friction, plot_profiles, plot_snapshot
 from tribolmp.analysis.profiles import CompositionProfile, VelocityProfile
@@ -44,3 +45,51 @@ def test_draw_into_given_axes(tmp_path):
     assert plot_friction(tmp_path, ax=ax) is ax
     assert len(ax.lines) >= 2  # mu(t) and the steady mean
     plt.close(fig)
+
+
+def _disc_dump(out, radius_nm=1.5):
+    """Four rows of non-touching discs (5 nm apart): base, lower body, upper body, slider."""
+    from tribolmp.analysis.synthetic import write_dump, write_meta
+
+    out.mkdir()
+    xs = np.arange(2.5, 50.0, 5.0)  # 10 per row, 2.5 nm from the periodic x boundary
+    rows = [(2.5, 1), (7.5, 2), (12.5, 3), (17.5, 4)]
+    pos = np.array([[x, y, 0.0] for y, _ in rows for x in xs])
+    mol = np.repeat([m for _, m in rows], xs.size)
+    box = np.array([[0.0, 50.0], [0.0, 20.0], [-0.5, 0.5]])
+    frame = dict(box=box, mol=mol, pos=pos, vel=np.zeros_like(pos), radius=radius_nm, nbond=0)
+    write_dump(out / "traj.lammpstrj", [dict(frame, step=0), dict(frame, step=100)])
+    write_meta(out, dt_s=1e-15, dump_interval_steps=100, velocity_m_s=5.0, diameter_m=2 * radius_nm * 1e-9,
+               box_m=box * 1e-9)
+    return xs.size
+
+
+def test_snapshot_draws_discs_of_the_true_diameter(tmp_path):
+    """Count the body-coloured pixels inside the axes: they must cover N pi r^2 in data units."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import to_rgb
+
+    from tribolmp.analysis.plots import BODY_COLOURS
+
+    r_nm = 1.5
+    n_per_row = _disc_dump(tmp_path / "run", r_nm)
+    for dpi in (60, 120):  # the disc size must not depend on the resolution (markers in points would)
+        fig, ax = plt.subplots(figsize=(8, 4), dpi=dpi)
+        plot_snapshot(tmp_path / "run" / "traj.lammpstrj", ax=ax)  # the dump path works as well as the dir
+        fig.canvas.draw()
+        img = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(float) / 255
+        bb = ax.get_window_extent()
+        h = img.shape[0]
+        inside = img[int(h - bb.y1) + 1:int(h - bb.y0) - 1, int(bb.x0) + 1:int(bb.x1) - 1]
+        (px0, py0), (px1, py1) = ax.transData.transform([(0.0, 0.0), (1.0, 1.0)])
+        px_per_nm2 = abs((px1 - px0) * (py1 - py0))
+        for mol in (2, 3):
+            hit = np.all(np.abs(inside - to_rgb(BODY_COLOURS[mol][0])) < 0.06, axis=-1).sum()
+            area = hit / px_per_nm2
+            # anti-aliased rims (~1 px of a ~17-35 px wide disc) are not counted: -6 % to -12 %;
+            # dots of a few pixels (the old failure) would cover < 1 %
+            assert area == pytest.approx(n_per_row * np.pi * r_nm**2, rel=0.15), (dpi, mol)
+        plt.close(fig)

@@ -49,8 +49,8 @@ def test_contact_takes_over_the_load():
     x, g = profile_from_geometry("sphere", W, E_STAR, n_springs=201, radius=R)
     c = ContactSprings(x, g, E_STAR, G_STAR, 0.3)
     d_eq = c.indentation(W)
-    hc = 2e-7
-    res = squeeze_approach(SqueezeParams(load=W, radius=R, viscosity=ETA, gap=H0, duration=0.05, contact_gap=hc), c)
+    hc = 2 * d_eq  # asperities touch at 2 d_eq: equilibrium gap h = d_eq > 0
+    res = squeeze_approach(SqueezeParams(load=W, radius=R, viscosity=ETA, gap=3 * d_eq, duration=0.05, contact_gap=hc), c)
     assert np.all(res.gap > 0)
     # static equilibrium: the MDR contact carries W at the indentation d_eq = h_c - h
     assert res.gap[-1] == pytest.approx(hc - d_eq, rel=1e-6)
