@@ -9,7 +9,12 @@ import numpy as np
 import pytest
 
 from tribolmp.analysis.rates import RATES_UNITS, compute_rates
-from tribolmp.analysis.synthetic import make_friction, make_oscillating_friction, make_transfer, make_walkers
+from tribolmp.analysis.synthetic import (
+    make_friction,
+    make_oscillating_friction,
+    make_transfer,
+    make_walkers,
+)
 
 CONTRACT = ("mu", "mu_err", "layer_depth_m", "diffusion_m2_s", "transfer_rate", "wear_rate", "detachment_rate",
             "reattachment_rate", "step_length_m", "step_time_s", "time_s", "units")

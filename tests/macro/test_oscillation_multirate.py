@@ -76,3 +76,59 @@ def test_averaged_cost_is_independent_of_frequency():
 
     q, kk = c.springs(N)
     assert avg.force[-1] == pytest.approx(float(microslip_force(5e-8, q, kk, MU)), rel=1e-12)
+
+
+# ------------------------------------------------ spring-pulled body (multirate)
+
+
+def test_tabulated_cycle_mean_force_limits():
+    from tribolmp.models.macro import jenkins_mean_force
+    from tribolmp.models.macro.reference import vibrated_coulomb_mean_force
+
+    nu = np.linspace(0.0, 0.99, 23)
+    # rigid-plastic limit (kappa -> inf): (2/pi) arcsin(nu).  2048 phase points per cycle place each
+    # of the two slip reversals to 1/2048 of a cycle, so the mean is off by < 2 * 2/2048 = 2e-3
+    assert np.max(np.abs(jenkins_mean_force(nu, 1e8) - vibrated_coulomb_mean_force(nu))) < 2e-3
+    # vanishing drift: the shakedown limit max(0, 1 - kappa) of the imposed-drift scheme
+    kappa = np.linspace(0.0, 3.0, 31)
+    assert np.max(np.abs(jenkins_mean_force(1e-9, kappa) - np.maximum(0.0, 1.0 - kappa))) < 1e-6
+    # nu >= 1: the drive never reverses, the spring slides all the time
+    assert np.all(jenkins_mean_force(np.array([1.0, 1.5]), np.array([[0.3], [50.0]])) == 1.0)
+
+
+@pytest.mark.parametrize("amp_frac", [0.5, 1.5])
+def test_pulled_body_averaged_matches_brute_force_short_window(amp_frac):
+    from tribolmp.models.macro import PulledParams, pulled_under_oscillation
+
+    c = _contact(n=101)
+    L = MU * N / c.stiffness(N)
+    # 3 ms: the body goes from rest through its first slip (drive force reaches mu N at ~1.5 ms)
+    # and slides at nu = v/(a w) ~ 0.2-0.6, where the velocity dependence of the mean force matters
+    p = PulledParams(mass=0.1, drive_stiffness=1e6, drive_velocity=1e-2, normal_force=N, amplitude=amp_frac * L,
+                     frequency=65e3, duration=3e-3, steps_per_cycle=32)
+    brute = pulled_under_oscillation(p, c, scheme="brute")
+    avg = pulled_under_oscillation(p, c, scheme="averaged")
+    f_avg = np.interp(brute.t, avg.t, avg.friction)
+    x_avg = np.interp(brute.t, avg.t, avg.x)
+    # measured 0.7 % (a = 0.5 L) and 1.6 % (a = 1.5 L) of mu N; brute force itself changes by 0.2 %
+    # from 32 to 64 steps per cycle.  The shakedown limits alone (no velocity table) would give a
+    # sliding force ~0 at a = 1.5 L: measured errors 39 % (a = 0.5 L) and 33 % (a = 1.5 L) of mu N.
+    assert np.max(np.abs(brute.friction - f_avg)) < 0.03 * MU * N
+    # position: measured 6e-4 / 7e-4 of the travel, the O(dt) phase error of semi-implicit Euler at
+    # 32 steps per body-contact period (1e-4 / 3e-4 at 64); deterministic, so no noise margin needed
+    assert np.max(np.abs(brute.x - x_avg)) < 1e-3 * np.max(np.abs(brute.x))
+    assert brute.friction.max() > 0.2 * MU * N  # the window really reaches sliding
+    assert avg.steps < brute.steps / 15
+
+
+def test_pulled_body_averaged_cost_is_independent_of_frequency():
+    from tribolmp.models.macro import PulledParams, pulled_under_oscillation
+
+    c = _contact(n=101)
+    steps = {}
+    for f in (65e3, 650e3):
+        p = PulledParams(mass=0.1, drive_stiffness=1e6, drive_velocity=1e-2, normal_force=N, amplitude=5e-8,
+                         frequency=f, duration=0.05)
+        steps[f] = pulled_under_oscillation(p, c, scheme="averaged").steps
+    # 0.05 s of drift; brute force would take 65e3 * 0.05 * 32 = 1e5 (resp. 1e6) steps
+    assert steps[65e3] == steps[650e3] < 0.05 * 65e3 * 32 / 20

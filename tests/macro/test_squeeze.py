@@ -1,5 +1,6 @@
 """Squeeze-film damper in the body's normal direction: exact solutions, positivity, contact engagement."""
 
+import json
 import math
 
 import numpy as np
@@ -63,3 +64,70 @@ def test_bad_inputs_are_one_line_parameter_errors():
         SqueezeParams(gap=-1e-6)
     with pytest.raises(ParameterError, match="contact"):
         squeeze_approach(SqueezeParams(contact_gap=1e-7))
+
+
+def test_tabulated_load_reproduces_the_linear_unloading_path():
+    from tribolmp.models.macro import ConstantFriction, StickSlipParams, stick_slip
+
+    law = ConstantFriction(0.4, 0.3)
+    kw = dict(mass=0.1, drive_stiffness=1e5, drive_velocity=0.01, normal_force=10.0, duration=0.05)
+    ref = stick_slip(StickSlipParams(**kw, unload_time=0.04), law, method="rk45")
+    tab = stick_slip(StickSlipParams(**kw), law, method="rk45", normal_load=([0.0, 0.04, 0.05], [10.0, 0.0, 0.0]))
+    # the same piecewise-linear N(t) through two code paths; event times located to rtol 1e-9
+    assert tab.n_transitions == ref.n_transitions > 4
+    assert np.allclose([e["t"] for e in tab.events], [e["t"] for e in ref.events], rtol=0, atol=1e-9)
+    with pytest.raises(ParameterError, match="normal_load"):
+        stick_slip(StickSlipParams(**kw), law, normal_load=([0.0, 0.0], [1.0, 1.0]))
+
+
+def test_load_carried_by_the_film_makes_the_body_slip_earlier():
+    """Lubricated body: the solid contact takes the load only as the film drains, so the body slips early."""
+    from scipy.optimize import brentq
+
+    from tribolmp.models.macro import ConstantFriction, StickSlipParams, stick_slip
+
+    x, g = profile_from_geometry("sphere", W, E_STAR, n_springs=201, radius=R)
+    c = ContactSprings(x, g, E_STAR, G_STAR, 0.3)
+    d_eq = c.indentation(W)
+    # heavy oil (5 Pa s); asperities already pressed by 0.5 d_eq at t = 0 (N_c = 0.35 W), film draining
+    sq = squeeze_approach(SqueezeParams(load=W, radius=R, viscosity=5.0, gap=0.6 * d_eq, duration=2e-3,
+                                        contact_gap=1.1 * d_eq), c, n_out=2001)
+    law = ConstantFriction(0.4, 0.3)
+    kd, V = 1e5, 0.05
+    p = StickSlipParams(mass=0.1, drive_stiffness=kd, drive_velocity=V, normal_force=W, duration=2e-3)
+    dry = stick_slip(p, law)
+    wet = stick_slip(p, law, method="rk45", normal_load=(sq.t, sq.contact_force))
+    t_dry, t_wet = dry.events[0]["t"], wet.events[0]["t"]
+    # first slip where k V t = mu_s N_c(t): an independent root of the same (interpolated) load
+    t_ref = brentq(lambda t: kd * V * t - 0.4 * np.interp(t, sq.t, sq.contact_force), 1e-9, 2e-3, xtol=1e-15)
+    assert t_wet == pytest.approx(t_ref, rel=1e-9)
+    assert t_dry == pytest.approx(0.4 * W / (kd * V), rel=1e-12)
+    # the film still carries a sizeable share of the load at the slip (else this test shows nothing)
+    assert wet.events[0]["normal_N"] < 0.9 * W and t_wet < 0.9 * t_dry
+
+
+def test_scene_adapter_and_cli(capsys):
+    from tests.conftest import assert_one_line_error
+    from tests.macro.helpers import run_main
+    from tribolmp.models import macro
+    from tribolmp.scene import default_scene, load_scene
+    from tribolmp.scene.schema import __file__ as _schema
+
+    path = __import__("pathlib").Path(_schema).parents[1] / "data" / "scenes" / "lubricated.toml"
+    scene = load_scene(path)
+    d = macro.contact_from_scene(scene).indentation(scene.load.normal_force)
+    res = macro.stick_slip_from_scene(scene, contact_gap=scene.lubricant.film_thickness + 0.5 * d, duration=5e-3)
+    # the solid contact ends up with the whole load once the film has drained to h_c - d_eq
+    assert res.squeeze.contact_force[-1] == pytest.approx(scene.load.normal_force, rel=1e-6)
+    assert res.squeeze.gap[-1] == pytest.approx(scene.lubricant.film_thickness - 0.5 * d, rel=1e-6)
+    assert res.events[0]["normal_N"] < scene.load.normal_force  # slipped while the film still carried load
+    out = run_main(capsys, "macro", "squeeze", path, "--duration", "1e-3", "--mass", "0", "--json")
+    assert out.returncode == 0, out.stderr
+    j = json.loads(out.stdout)
+    alpha = 6 * math.pi * scene.lubricant.viscosity * scene.geometry.radius**2
+    # no contact: the exponential thinning h0 exp(-W t/alpha) (integrated to rtol 1e-9)
+    assert j["final_gap_m"] == pytest.approx(scene.lubricant.film_thickness * math.exp(-scene.load.normal_force * 1e-3 / alpha),
+                                             rel=1e-7)
+    assert default_scene().lubricant is None  # the embedded scene is dry
+    assert_one_line_error(run_main(capsys, "macro", "squeeze", "--json"), "[lubricant]")
+    assert_one_line_error(run_main(capsys, "macro", "squeeze", path, "--gap", "-1"), "gap")

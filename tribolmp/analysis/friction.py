@@ -136,6 +136,7 @@ class FrictionCoefficient:
         if t.size - d < 8:
             raise DataFileError(f"friction: start_s: expected >= 8 samples after it, got {t.size - d}")
         msgs = []
+        # the tests run on the candidate window (MSER or forced start); drift_sigma stays theirs
         is_steady, drift, converged, n_ind = self._assess(ft[d:], fn[d:], mser_ok, msgs)
         if self._start is not None:
             estimator, w = "forced_start_mean", d

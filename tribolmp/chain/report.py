@@ -7,7 +7,6 @@ recomputed here.  matplotlib is imported only inside :func:`draw_figures`.
 
 from __future__ import annotations
 
-import csv
 import importlib.metadata as md
 import os
 import platform
@@ -197,63 +196,18 @@ def _markdown(data: dict[str, Any]) -> str:
 # ------------------------------------------------------------------- figures
 
 
-def _read_last_dump_frame(path: Path) -> tuple[list[str], np.ndarray]:
-    """Columns and rows of the last frame of a LAMMPS text dump (no MDAnalysis needed for a plot)."""
-    last_start = None
-    with open(path, encoding="utf-8") as fh:
-        lines = fh.readlines()
-    for i, line in enumerate(lines):
-        if line.startswith("ITEM: TIMESTEP"):
-            last_start = i
-    if last_start is None:
-        raise ValueError("no frame in dump")
-    n = int(lines[last_start + 3])
-    header_i = next(i for i in range(last_start, len(lines)) if lines[i].startswith("ITEM: ATOMS"))
-    cols = lines[header_i].split()[2:]
-    rows = np.array([ln.split() for ln in lines[header_i + 1 : header_i + 1 + n]], dtype=float)
-    return cols, rows
-
-
 def _fig_mca(ax, run: ChainRun) -> None:
-    res = run.result("nanoscale")
-    cols, rows = _read_last_dump_frame(res.file("traj"))
-    c = {k: i for i, k in enumerate(cols)}
-    normal = 1  # the MCA decks slide along x with y normal unless meta.json says otherwise
-    if "meta" in res.record.get("files", {}):
-        from ..analysis.outputs import read_meta
+    from ..analysis.plots import plot_snapshot
 
-        normal = read_meta(res.file("meta").parent).normal_axis
-    # The dump is in LAMMPS 'units nano': positions are already in nm.
-    x, z = rows[:, c["x"]], rows[:, c["xyz"[normal]]]
-    mol = rows[:, c["mol"]] if "mol" in c else np.ones(len(rows))
-    ax.scatter(x, z, c=mol, s=3.0, cmap="viridis", vmin=1, vmax=4, linewidths=0)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x (nm)")
-    ax.set_ylabel("height (nm)")
+    # true-size discs coloured by body, like the seed's Fig. 9
+    plot_snapshot(run.result("nanoscale").file("traj").parent, ax=ax)
 
 
 def _fig_mu(ax, run: ChainRun) -> None:
-    res = run.result("nanoscale")
-    with open(res.file("friction"), newline="") as fh:
-        table = list(csv.DictReader(fh))
-    t = np.array([float(r["time_s"]) for r in table])
-    f = np.array([float(r["friction_N"]) for r in table])
-    n = np.array([float(r["normal_N"]) for r in table])
-    # While the slider approaches, the normal force is ~0 and F/N is meaningless: show mu only
-    # once the normal force has built up (half its median).
-    loaded = n > 0.5 * np.median(n[n > 0]) if np.any(n > 0) else np.zeros_like(n, dtype=bool)
-    ax.plot(t[loaded] * 1e9, f[loaded] / n[loaded], lw=0.6, label="F_friction / F_normal")
-    if "mu" in res.values:
-        ax.axhline(res.values["mu"], color="k", ls="--", lw=0.8, label=f"steady mu = {res.values['mu']:.3g}")
-    if res.values.get("steady_start_s"):
-        ax.axvline(res.values["steady_start_s"] * 1e9, color="gray", ls=":", lw=0.8, label="steady start")
-    if np.any(loaded):
-        lo, hi = np.percentile(f[loaded] / n[loaded], [1, 99])
-        pad = 0.2 * (hi - lo)
-        ax.set_ylim(lo - pad, hi + pad)
-    ax.legend(fontsize=7)
-    ax.set_xlabel("t (ns)")
-    ax.set_ylabel("mu")
+    from ..analysis.plots import plot_friction
+
+    # marks the averaging window and says "not steady" when no steady state was detected
+    plot_friction(run.result("nanoscale").file("friction").parent, ax=ax)
 
 
 def _fig_psd(ax, run: ChainRun) -> None:

@@ -1,4 +1,4 @@
-"""``tribolmp macro stick-slip|oscillate``: the rigid body on MDR contact springs."""
+"""``tribolmp macro stick-slip|oscillate|squeeze``: the rigid body on MDR contact springs."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ HELP = "rigid body on contact springs: stick-slip and oscillation"
 
 
 def configure(parser) -> None:
-    """Add the ``stick-slip`` and ``oscillate`` subcommands."""
+    """Add the ``stick-slip``, ``oscillate`` and ``squeeze`` subcommands."""
     sub = parser.add_subparsers(dest="action", metavar="ACTION", parser_class=type(parser), required=True)
     ss = sub.add_parser("stick-slip", help="body pulled through a spring at constant velocity")
     ss.add_argument("scene", nargs="?", help="TOML scene file (default: the embedded scene)")
@@ -21,6 +21,8 @@ def configure(parser) -> None:
     ss.add_argument("--duration", type=float, help="simulated time in s")
     ss.add_argument("--velocity", type=float, help="drive velocity in m/s")
     ss.add_argument("--method", default="auto", help="auto, analytic, rk45, radau, radau-rk45, bdf, lsoda")
+    ss.add_argument("--contact-gap", type=float,
+                    help="with [lubricant]: gap in m where the asperities touch; the load reaches the contact through the squeeze film")
     ss.add_argument("--series", action="store_true", help="include the (downsampled) time series in the JSON")
     ss.add_argument("--json", action="store_true", help="print JSON")
     osc = sub.add_parser("oscillate", help="prescribed tangential oscillation with micro-slip")
@@ -31,14 +33,22 @@ def configure(parser) -> None:
     osc.add_argument("--steps-per-cycle", type=int, default=200)
     osc.add_argument("--mu", type=float, help="friction coefficient (default: the scene's)")
     osc.add_argument("--json", action="store_true", help="print JSON")
+    sq = sub.add_parser("squeeze", help="normal approach of the body through the squeeze film ([lubricant])")
+    sq.add_argument("scene", nargs="?", help="TOML scene file with a [lubricant] section (default: the embedded scene)")
+    sq.add_argument("--load", type=float, help="normal load in N (default [load].normal_force)")
+    sq.add_argument("--gap", type=float, help="initial film thickness in m (default [lubricant].film_thickness)")
+    sq.add_argument("--duration", type=float, help="simulated time in s (default [kinematics].duration)")
+    sq.add_argument("--mass", type=float, help="body mass in kg, 0 = overdamped (default [kinematics].mass)")
+    sq.add_argument("--contact-gap", type=float, default=0.0, help="gap in m where the MDR contact engages (0 = never)")
+    sq.add_argument("--json", action="store_true", help="print JSON")
 
 
 def run(args) -> int:
-    """Dispatch to the two drives."""
+    """Dispatch to the drives and the normal approach."""
     from ..scene import default_scene, load_scene
 
     scene = load_scene(args.scene) if args.scene else default_scene()
-    out = _stick_slip(args, scene) if args.action == "stick-slip" else _oscillate(args, scene)
+    out = {"stick-slip": _stick_slip, "oscillate": _oscillate, "squeeze": _squeeze}[args.action](args, scene)
     if args.json:
         from . import emit_json
 
@@ -70,7 +80,7 @@ def _stick_slip(args, scene) -> dict:
     if args.velocity is not None:
         over["drive_velocity"] = args.velocity
     res = stick_slip_from_scene(scene, contact_law=args.contact, law=law, contact_stiffness=args.contact_stiffness,
-                                method=args.method, **over)
+                                method=args.method, contact_gap=args.contact_gap, **over)
     f = res.drive_force
     out = {
         "method": res.method,
@@ -89,6 +99,9 @@ def _stick_slip(args, scene) -> dict:
         "events": res.events[:1000],
         "units": {"force_max_N": "N", "final_position_m": "m", "final_velocity_m_s": "m/s", "time_s": "s"},
     }
+    if "squeeze" in res:
+        out["squeeze_final_gap_m"] = float(res.squeeze.gap[-1])
+        out["squeeze_final_contact_force_N"] = float(res.squeeze.contact_force[-1])
     if args.series:
         idx = np.unique(np.linspace(0, res.t.size - 1, min(res.t.size, 2000)).astype(int))
         out["series"] = {k: res[k][idx] for k in ("t", "x", "v", "drive_force", "phase")}
@@ -111,4 +124,27 @@ def _oscillate(args, scene) -> dict:
         "stiffness_x_N_m": res.stiffness_x,
         "time_s": res.time_s,
         "units": {"amplitude_m": "m", "force_amplitude_N": "N", "dissipation_per_cycle_J": "J", "stiffness_x_N_m": "N/m"},
+    }
+
+
+def _squeeze(args, scene) -> dict:
+    from ..models.macro import contact_from_scene, squeeze_approach, squeeze_params_from_scene
+
+    over = {k: v for k, v in (("load", args.load), ("gap", args.gap), ("duration", args.duration), ("mass", args.mass))
+            if v is not None}
+    p = squeeze_params_from_scene(scene, contact_gap=args.contact_gap, **over)
+    res = squeeze_approach(p, contact_from_scene(scene) if p.contact_gap > 0 else None)
+    return {
+        "load_N": p.load,
+        "initial_gap_m": p.gap,
+        "final_gap_m": float(res.gap[-1]),
+        "final_film_force_N": float(res.film_force[-1]),
+        "final_contact_force_N": float(res.contact_force[-1]),
+        "alpha_N_s": float(res.alpha),
+        "mass_kg": p.mass,
+        "nfev": res.nfev,
+        "time_s": res.time_s,
+        "message": res.message,
+        "units": {"load_N": "N", "initial_gap_m": "m", "final_gap_m": "m", "final_film_force_N": "N",
+                  "final_contact_force_N": "N", "alpha_N_s": "N s", "time_s": "s"},
     }

@@ -117,7 +117,7 @@ def contact_from_scene(scene, *, mu: float | None = None, n_springs: int | None 
 
 def stick_slip_from_scene(scene, mu: float | None = None, contact_law: str = "rigid", *,
                           law: FrictionLaw | None = None, contact_stiffness: float | None = None,
-                          method: str = "auto", rng=None, **overrides):
+                          method: str = "auto", rng=None, contact_gap: float | None = None, **overrides):
     """Chain entry point: stick-slip of the scene's body.
 
     Parameters
@@ -138,6 +138,16 @@ def stick_slip_from_scene(scene, mu: float | None = None, contact_law: str = "ri
     rng : numpy.random.Generator, optional
         Draws the rough MDR profile for ``[geometry].profile = "rough"``
         (see :func:`contact_from_scene`).
+    contact_gap : float, optional
+        With a ``[lubricant]`` section: the gap (m) at which the asperities
+        touch.  The body then first approaches through the squeeze film
+        (:func:`squeeze_approach` from ``h0 = [lubricant].film_thickness``)
+        and the friction acts on the load the solid contact carries,
+        ``contact_force(t)``; the result gets ``squeeze`` (that approach).
+        The approach is overdamped here (normal inertia neglected: it costs
+        ~10x more and the film damps the normal mode); use
+        :func:`squeeze_approach` with ``mass`` for the inertial one.
+        Without it the normal direction stays quasi-static (dry).
     **overrides
         Fields of :class:`StickSlipParams`.
     """
@@ -154,7 +164,15 @@ def stick_slip_from_scene(scene, mu: float | None = None, contact_law: str = "ri
         p0 = params_from_scene(scene, **overrides)
         kc = contact_from_scene(scene, mu=law.mu_s, rng=rng).stiffness_table(max(p0.normal_force, 1e-9))
     params = params_from_scene(scene, **overrides)
-    return stick_slip(params, law, method=method, contact_stiffness=kc)
+    if contact_gap is None:
+        return stick_slip(params, law, method=method, contact_stiffness=kc)
+    sq = squeeze_approach(squeeze_params_from_scene(scene, load=params.normal_force, duration=params.duration,
+                                                    mass=0.0, contact_gap=contact_gap),
+                          contact_from_scene(scene, mu=law.mu_s, rng=rng), n_out=2001)
+    res = stick_slip(params, law, method="rk45" if method in ("auto", "analytic") else method, contact_stiffness=kc,
+                     normal_load=(sq.t, sq.contact_force))
+    res["squeeze"] = sq
+    return res
 
 
 def oscillation_from_scene(scene, amplitude: float, *, frequency: float | None = None, cycles: int = 3,

@@ -14,6 +14,14 @@ The cycle-averaged contact is therefore again a row of Coulomb springs, with
 reduced limits (:class:`AveragedContact`); its steps only need to resolve the
 slow motion ``X``, independently of the oscillation frequency.  The error is
 of order of the drift per cycle over the amplitude, ``V / (a w)``.
+
+A body pulled through a spring (:func:`pulled_under_oscillation`) slides at
+speeds ``v`` comparable to ``a w`` during slip, where that limit is no longer
+small: the steady cycle-mean force of a spring under ``v t + a sin(w t)`` is
+``mu q Phi(v/(a w), k a/(mu q))`` (:func:`jenkins_mean_force`), tabulated
+once per run in ``v`` for every spring, and the averaged springs are clipped
+to these speed-dependent limits.  The body's steps then resolve only its own
+mode on the contact, ``2 pi sqrt(m/(k_d + k_c))``.
 """
 
 from __future__ import annotations
@@ -46,6 +54,11 @@ class AveragedContact:
         Coulomb coefficient.
     amplitude : float
         Oscillation amplitude ``a`` (m).
+    frequency : float, optional
+        Oscillation frequency ``f`` (Hz).  Given, the limits depend on the slow
+        sliding speed ``v`` through the table ``mu q_i Phi(|v|/(a w), k_i a/(mu q_i))``
+        of :func:`jenkins_mean_force` (``n_velocity`` speeds, linear
+        interpolation); without it, the ``v -> 0`` limits (imposed slow drift).
     """
 
     def __init__(self, spring_normal, spring_stiffness, mu: float, amplitude: float, frequency: float | None = None,
@@ -252,7 +265,7 @@ class PulledParams:
     frequency: float = param(65e3, unit="Hz", lo=0.0, lo_open=True, hi=1e9)
     duration: float = param(2e-3, unit="s", lo=0.0, lo_open=True, hi=1e6)
     steps_per_cycle: int = param(32, lo=8, hi=10**5)
-    steps_per_period: int = param(64, lo=8, hi=10**6)
+    steps_per_period: int = param(32, lo=8, hi=10**6)
 
     def __post_init__(self):
         validate_dataclass(self)

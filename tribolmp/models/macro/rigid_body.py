@@ -1,7 +1,9 @@
 """A rigid body of mass m on nonlinear contact springs (seed Section 2, Fig. 4).
 
 Tangential dynamics along the sliding direction; the normal direction is
-quasi-static (the MDR normal law maps load <-> indentation).  Two drives:
+quasi-static (the MDR normal law maps load <-> indentation), or, with a
+lubricant, the squeeze-film approach of :mod:`.normal` whose solid-contact
+load enters here as a tabulated ``normal_load``.  Two drives:
 
 * :func:`stick_slip` -- the body is pulled through a spring of stiffness
   ``k_d`` whose end moves at ``V``.  The contact either sticks or slips with a
@@ -109,8 +111,29 @@ class _Trace:
 _NAME = {STICK: "stick", SLIP_POS: "slip+", SLIP_NEG: "slip-"}
 
 
+class _LoadTable:
+    """``StickSlipParams`` seen with a tabulated normal load N(t) (piecewise linear between knots)."""
+
+    def __init__(self, params: StickSlipParams, t, n):
+        t, n = np.asarray(t, dtype=float), np.asarray(n, dtype=float)
+        if t.ndim != 1 or t.size < 2 or t.shape != n.shape:
+            raise ParameterError("normal_load", "two 1D arrays (t, N) of equal length >= 2", f"shapes {t.shape}, {n.shape}")
+        if not (np.all(np.isfinite(t)) and np.all(np.isfinite(n)) and np.all(np.diff(t) > 0) and np.all(n >= 0)):
+            raise ParameterError("normal_load", "finite increasing times (s) and finite loads >= 0 N", "invalid entries")
+        self._p, self._t, self._n = params, t, n
+        self.load_knots = t
+
+    def __getattr__(self, name):
+        return getattr(self._p, name)
+
+    def load(self, t: float) -> float:
+        """Normal load N(t) (N), held constant outside the table."""
+        return float(np.interp(t, self._t, self._n))
+
+
 def stick_slip(params: StickSlipParams, law: FrictionLaw | None = None, *, method: str = "auto",
-               contact_stiffness: Callable[[float], float] | None = None, x0: float = 0.0) -> Result:
+               contact_stiffness: Callable[[float], float] | None = None, x0: float = 0.0,
+               normal_load: tuple | None = None) -> Result:
     """Integrate the spring-pulled body through stick and slip phases.
 
     Parameters
@@ -130,6 +153,11 @@ def stick_slip(params: StickSlipParams, law: FrictionLaw | None = None, *, metho
         the load vanishes.
     x0 : float
         Initial position (m); the body starts at rest in stick.
+    normal_load : (t, N), optional
+        Tabulated normal load on the contact (s, N), e.g. the ``contact_force``
+        of :func:`~tribolmp.models.macro.normal.squeeze_approach` (the share
+        of the load the solid contact carries beside the squeeze film); replaces
+        ``params.normal_force``/``unload_time``.
 
     Returns
     -------
@@ -139,9 +167,11 @@ def stick_slip(params: StickSlipParams, law: FrictionLaw | None = None, *, metho
         force and load), ``n_transitions``, ``nfev``.
     """
     law = ConstantFriction(0.3) if law is None else law
+    if normal_load is not None:
+        params = _LoadTable(params, *normal_load)
     if method == "auto":
         rigid = contact_stiffness is None and params.contact_stiffness == 0.0
-        if rigid and isinstance(law, ConstantFriction) and params.unload_time == 0.0:
+        if rigid and isinstance(law, ConstantFriction) and params.unload_time == 0.0 and normal_load is None:
             method = "analytic"
         else:  # explicit RK is fine for a rigid contact; a contact spring makes the stick phase stiff
             method = "rk45" if rigid else "radau-rk45"
@@ -149,6 +179,7 @@ def stick_slip(params: StickSlipParams, law: FrictionLaw | None = None, *, metho
     res = Result(method=method)
     with timed(res):
         tr, nfev = run(params, law, contact_stiffness, x0)
+    params = getattr(params, "_p", params)
     t = np.array(tr.t)
     x = np.array(tr.x)
     if not np.all(np.isfinite(x)):
@@ -182,7 +213,8 @@ def _next_phase(F: float, N: float, law: FrictionLaw, V: float) -> int:
 def _rigid_stick_end(p: StickSlipParams, law: FrictionLaw, t0: float, x: float) -> tuple[float, int]:
     """First t > t0 where |k_d (V t - x)| reaches mu_s N(t): both sides are piecewise linear in t."""
     k, V = p.drive_stiffness, p.drive_velocity
-    knots = [t0] + ([p.unload_time] if t0 < p.unload_time < p.duration else []) + [p.duration]
+    inner = getattr(p, "load_knots", [p.unload_time])
+    knots = [t0] + [float(tk) for tk in inner if t0 < tk < p.duration] + [p.duration]
     for a, b in zip(knots[:-1], knots[1:]):
         found = []
         for sgn in (1, -1):
@@ -310,7 +342,8 @@ STICK_SLIP_METHODS.register("radau-rk45")(_ode_runner("Radau", "RK45"))
 @STICK_SLIP_METHODS.register("analytic")
 def _analytic(p: StickSlipParams, law: FrictionLaw, kc_of_load, x0: float):
     """Exact event-driven segments: harmonic slip, linear stick (rigid, constant mu and N)."""
-    if not isinstance(law, ConstantFriction) or p.contact_stiffness != 0.0 or kc_of_load is not None or p.unload_time > 0:
+    if (not isinstance(law, ConstantFriction) or p.contact_stiffness != 0.0 or kc_of_load is not None
+            or p.unload_time > 0 or isinstance(p, _LoadTable)):
         raise ParameterError("method", "'analytic' only with a constant friction law, rigid contact and constant load",
                              "analytic")
     m, k, V, N = p.mass, p.drive_stiffness, p.drive_velocity, p.normal_force
