@@ -7,7 +7,12 @@ import numpy as np
 import pytest
 
 from tribolmp.errors import ParameterError
-from tribolmp.models.macro import ContactSprings, SqueezeParams, profile_from_geometry, squeeze_approach
+from tribolmp.models.macro import (
+    ContactSprings,
+    SqueezeParams,
+    profile_from_geometry,
+    squeeze_approach,
+)
 from tribolmp.models.macro.reference import squeeze_approach_gap
 
 E_STAR = 206e9 / (2 * (1 - 0.3**2))
@@ -70,7 +75,7 @@ def test_tabulated_load_reproduces_the_linear_unloading_path():
     from tribolmp.models.macro import ConstantFriction, StickSlipParams, stick_slip
 
     law = ConstantFriction(0.4, 0.3)
-    kw = dict(mass=0.1, drive_stiffness=1e5, drive_velocity=0.01, normal_force=10.0, duration=0.05)
+    kw = {"mass": 0.1, "drive_stiffness": 1e5, "drive_velocity": 0.01, "normal_force": 10.0, "duration": 0.05}
     ref = stick_slip(StickSlipParams(**kw, unload_time=0.04), law, method="rk45")
     tab = stick_slip(StickSlipParams(**kw), law, method="rk45", normal_load=([0.0, 0.04, 0.05], [10.0, 0.0, 0.0]))
     # the same piecewise-linear N(t) through two code paths; event times located to rtol 1e-9

@@ -303,7 +303,7 @@ def _pulled_brute(p: PulledParams, contact):
     tang = contact.tangential()
     tang.step(d, 0.0)
     spc = p.steps_per_cycle
-    n_cyc = max(1, int(round(p.duration * p.frequency)))
+    n_cyc = max(1, round(p.duration * p.frequency))
     dt = 1.0 / (p.frequency * spc)
     m, kd, V = p.mass, p.drive_stiffness, p.drive_velocity
     x = v = 0.0
@@ -328,7 +328,7 @@ def _pulled_averaged(p: PulledParams, contact):
     avg = AveragedContact(q, k, contact.mu, p.amplitude, p.frequency)
     m, kd, V = p.mass, p.drive_stiffness, p.drive_velocity
     period = 2 * math.pi * math.sqrt(m / (kd + float(np.sum(avg.k))))
-    n = max(2, int(math.ceil(p.duration / period * p.steps_per_period)))
+    n = max(2, math.ceil(p.duration / period * p.steps_per_period))
     dt = p.duration / n
     t = np.arange(n + 1) * dt
     xs, vs, fs = np.zeros(n + 1), np.zeros(n + 1), np.zeros(n + 1)

@@ -78,8 +78,8 @@ def squeeze_params_from_scene(scene, **overrides) -> SqueezeParams:
 
     if scene.lubricant is None:
         raise ParameterError("[lubricant]", "a [lubricant] section for the squeeze damper", "nothing")
-    kw = dict(load=scene.load.normal_force, radius=scene.geometry.radius, viscosity=scene.lubricant.viscosity,
-              gap=scene.lubricant.film_thickness, duration=scene.kinematics.duration, mass=scene.kinematics.mass)
+    kw = {"load": scene.load.normal_force, "radius": scene.geometry.radius, "viscosity": scene.lubricant.viscosity,
+          "gap": scene.lubricant.film_thickness, "duration": scene.kinematics.duration, "mass": scene.kinematics.mass}
     kw.update(overrides)
     return SqueezeParams(**kw)
 

@@ -124,6 +124,8 @@ class _LoadTable:
         self.load_knots = t
 
     def __getattr__(self, name):
+        if name.startswith("_"):  # only the params' public fields are forwarded (no recursion on _p)
+            raise AttributeError(name)
         return getattr(self._p, name)
 
     def load(self, t: float) -> float:
