@@ -136,3 +136,23 @@ def test_scene_adapter_and_cli(capsys):
     assert default_scene().lubricant is None  # the embedded scene is dry
     assert_one_line_error(run_main(capsys, "macro", "squeeze", "--json"), "[lubricant]")
     assert_one_line_error(run_main(capsys, "macro", "squeeze", path, "--gap", "-1"), "gap")
+
+
+def test_film_thinning_past_float_underflow_stays_exact_and_flagged():
+    """Regression: ln(h/h0) far below -745 (h underflows to 0.0) must not evaluate the damper at h = 0.
+
+    The log gap stays exact (s = -W t / alpha, alpha = 6 pi eta R^2), the film still carries the
+    whole load, and the result says the film is still thinning (status 1) instead of raising.
+    """
+    import math
+
+    from tribolmp.models.macro.normal import SqueezeParams, squeeze_approach
+
+    R, eta, h0, W, T = 5e-3, 0.1, 1e-6, 10.0, 1e-2
+    res = squeeze_approach(SqueezeParams(radius=R, viscosity=eta, gap=h0, load=W, duration=T))
+    alpha = 6 * math.pi * eta * R**2
+    assert res.log_gap[-1] < -745  # the float gap has underflowed
+    # Radau in ln h is exact for this linear s(t) up to its tolerance (rtol ~1e-9 of |s|)
+    assert abs(res.log_gap[-1] / (-W * T / alpha) - 1.0) < 1e-6
+    assert abs(res.film_force[-1] / W - 1.0) < 1e-9
+    assert res.gap[-1] >= 0.0 and res.status == 1 and "still thinning" in res.message

@@ -186,3 +186,29 @@ def test_zero_normal_load_from_the_start(kc):
     ref = free_oscillation(res.t, 0.1, 1e5, 0.01, 0.0, 0.0, 0.0, 0.0)
     assert np.max(np.abs(res.x - ref)) < 1e-6 * np.ptp(ref)
     assert res.n_transitions <= 2
+
+
+def test_tabulated_load_from_zero_on_an_elastic_contact_does_not_chatter():
+    """Regression: a normal load ramping up from exactly 0 N (film rupture) on an elastic contact.
+
+    Before the fix the zero-load stick phase switched to slip, which ended at once (friction grows
+    faster than the drive force), and the loop was reported as chattering at t = 0.
+    """
+    import numpy as np
+
+    from tribolmp.models.macro.friction import ConstantFriction
+    from tribolmp.models.macro.rigid_body import StickSlipParams, stick_slip
+
+    k, V, mu, N, kc = 1e6, 0.01, 0.1, 10.0, 1e9
+    p = StickSlipParams(mass=0.1, drive_stiffness=k, drive_velocity=V, normal_force=N, duration=2e-3,
+                        contact_stiffness=kc)
+    t = np.linspace(0.0, 2e-3, 201)
+    load = N * np.minimum(t / 2.5e-5, 1.0)  # reaches N long before the drive force reaches mu N
+    res = stick_slip(p, ConstantFriction(mu), normal_load=(t, load))
+    first = res.events[0]
+    assert first["from_phase"] == "stick" and first["to_phase"] == "slip+"
+    # Slip starts when the contact force reaches mu N: drive stretch mu N / k plus the contact's
+    # elastic deformation mu N / kc; the contact damping shifts it by < 1e-3 relative.
+    t_exact = mu * N / (k * V) * (1.0 + k / kc)
+    assert abs(first["t"] / t_exact - 1.0) < 1e-3
+    assert abs(first["force_N"] / (mu * N) - 1.0) < 1e-3

@@ -257,8 +257,9 @@ def _ode_runner(solver: str, slip_solver: str | None = None):
                 if sgn == 0:
                     break
                 new = SLIP_POS if sgn > 0 else SLIP_NEG
-            elif phase == STICK and p.load(t) <= 0.0:
-                new = _next_phase(k * (V * t - x), 0.0, law, V)  # no load: nothing can stick
+            elif phase == STICK and p.load(t) <= 0.0 and k * (V * t - x) != 0.0:
+                # no load but a drive force: nothing can hold the body
+                new = _next_phase(k * (V * t - x), 0.0, law, V)
             elif phase == STICK:
                 # State (e, de/dt) with e = x - anchor the contact deformation:
                 # e is ~mu N / k_c, tiny for a stiff contact, so it gets its own tolerance.
