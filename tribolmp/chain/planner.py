@@ -16,7 +16,8 @@ Rules (each becomes the ``reason`` string of the report):
 * ``contact`` runs when stiffness is requested or consumed downstream; with
   ``method = "auto"`` it picks MDR or BEM and the mesh from measured data.
 * ``lubrication`` runs whenever the scene has a ``[lubricant]``.
-* ``macroscale`` runs for ``stick_slip``; ``tribospectroscopy`` for ``tribospectroscopy``.
+* ``macroscale`` runs for ``stick_slip`` (with a ``[lubricant]``, the squeeze film shares its
+  normal load); ``tribospectroscopy`` for ``tribospectroscopy``.
 """
 
 from __future__ import annotations
@@ -57,15 +58,25 @@ MODEL_SOURCES = {
 }
 
 
-def code_hash(stage: str) -> str:
-    """SHA-256 of the source files (``*.py``, ``*.in``) a stage's model reads; imports nothing."""
+#: Extra source folders a stage reads only with a planner option (so other scenes' keys do not change).
+OPTIONAL_SOURCES = {("macroscale", "squeeze_film"): ("models/lubrication",)}
+
+
+def code_hash(stage: str, options: dict[str, Any] | None = None) -> str:
+    """SHA-256 of the source files (``*.py``, ``*.in``) a stage's model reads; imports nothing.
+
+    ``options`` (the stage plan's) adds the :data:`OPTIONAL_SOURCES` of the options that are set.
+    """
     import hashlib
     from pathlib import Path
 
     root = Path(__file__).resolve().parents[1]
     digest = hashlib.sha256()
     paths = [root / "chain" / "stages.py", root / "models" / "base.py"]
-    for folder in MODEL_SOURCES[stage]:
+    folders = MODEL_SOURCES[stage] + tuple(
+        f for (st, opt), extra in OPTIONAL_SOURCES.items() if st == stage and (options or {}).get(opt) for f in extra
+    )
+    for folder in folders:
         base = root / folder
         if base.is_dir():
             paths += sorted(p for p in base.rglob("*") if p.suffix in (".py", ".in") and p.is_file())
@@ -348,14 +359,24 @@ def plan_scene(scene: Scene, *, table: dict[str, Any] | None = None) -> Plan:
     if want_macro:
         needs = tuple(n for n in ("contact",) if any(s.name == n and s.run for s in stages)) + rates_need
         how = "MDR contact springs of the axisymmetric profile" if scene.geometry.profile != "rough" else "the rough contact's tangential stiffness"
+        sections = ("kinematics", "load", "geometry", "material", "counter_material", "contact") + rates_sections
+        options: dict[str, Any] = {"contact_law": "mdr" if scene.geometry.profile != "rough" else "stiffness"}
+        film = ""
+        if want_lub:
+            # The body first approaches through the squeeze film; the rupture gap comes from
+            # [roughness] (or the film thickness).  Only lubricated scenes hash these, so a dry
+            # scene's key is what it was before the film fed the rigid body.
+            sections += ("lubricant", "roughness")
+            options["squeeze_film"] = True
+            film = "; normal load shared with the [lubricant] squeeze film"
         stages.append(
             StagePlan(
                 "macroscale",
                 True,
-                f"outputs request 'stick_slip': rigid body on {how}, mu from {'nanoscale' if rates_need else '[rates]' if scene.rates is not None else '[load]'}",
+                f"outputs request 'stick_slip': rigid body on {how}, mu from {'nanoscale' if rates_need else '[rates]' if scene.rates is not None else '[load]'}{film}",
                 needs=needs,
-                sections=("kinematics", "load", "geometry", "material", "counter_material", "contact") + rates_sections,
-                options={"contact_law": "mdr" if scene.geometry.profile != "rough" else "stiffness"},
+                sections=sections,
+                options=options,
             )
         )
     else:

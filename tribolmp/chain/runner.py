@@ -213,7 +213,7 @@ def run_chain(
             # recomputed upstream stage invalidates everything downstream of it.
             "upstream": {n: f"{run.result(n).key}:{run.result(n).record.get('output_id', '')}" for n in sp.needs},
             "seed": seed,
-            "code": code_hash(sp.name),
+            "code": code_hash(sp.name, sp.options),
         }
         key = cache.key(sp.name, inputs)
         if sp.name in forced:

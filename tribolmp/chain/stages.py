@@ -419,6 +419,9 @@ def macroscale(ctx: StageContext) -> StageOutput:
     else:
         kw["contact_law"] = "mdr"
         kc, kc_src = None, "MDR springs of the [geometry] profile (load dependent)"
+    film = bool(ctx.plan.options.get("squeeze_film")) and ctx.scene.lubricant is not None
+    if film:
+        kw["contact_gap"], hc_src = film_rupture_gap(ctx.scene)
     res = macro.stick_slip_from_scene(ctx.scene, **kw)
     t = np.asarray(res.t)
     np.savez(ctx.workdir / "trajectory.npz", t=t, x=res.x, velocity=res.v, friction=res.drive_force, phase=res.phase)
@@ -434,11 +437,51 @@ def macroscale(ctx: StageContext) -> StageOutput:
         "mean_drive_force_N": float(np.mean(res.drive_force)),
         "max_velocity_m_s": float(np.max(res.v)),
         "duration_s": float(t[-1]) if t.size else 0.0,
+        "first_slip_time_s": float(slips[0]["t"]) if slips else None,
     }
     units = {"mu": "1", "contact_stiffness_N_m": "N/m", "max_drive_force_N": "N", "mean_drive_force_N": "N",
-             "max_velocity_m_s": "m/s", "duration_s": "s"}
-    return StageOutput(values=values, units=units, files={"trajectory": "trajectory.npz"}, method=str(res.method),
-                       message=str(res.message), nit=int(res.nit))
+             "max_velocity_m_s": "m/s", "duration_s": "s", "first_slip_time_s": "s"}
+    files = {"trajectory": "trajectory.npz"}
+    message = str(res.message)
+    if film:
+        sq = res.squeeze
+        W = ctx.scene.load.normal_force
+        fc = np.asarray(sq.contact_force)
+        touched = np.flatnonzero(fc > 0.0)
+        np.savez(ctx.workdir / "squeeze.npz", t=sq.t, gap=sq.gap, log_gap=sq.log_gap, film_force=sq.film_force,
+                 contact_force=fc)
+        files["squeeze"] = "squeeze.npz"
+        values.update({
+            "film_rupture_gap_m": kw["contact_gap"],
+            "film_rupture_gap_source": hc_src,
+            "time_to_solid_contact_s": float(np.asarray(sq.t)[touched[0]]) if touched.size else None,
+            "final_load_share": float(fc[-1] / W),
+            "final_gap_m": float(np.asarray(sq.gap)[-1]),
+            "squeeze_status": int(sq.status),
+            "squeeze_message": str(sq.message),
+        })
+        units.update({"film_rupture_gap_m": "m", "time_to_solid_contact_s": "s", "final_load_share": "1",
+                      "final_gap_m": "m"})
+        if sq.status != 0:
+            # Not a failure of the chain: the model says the film has not been squeezed out yet
+            # (h_c below the indentation the load needs, or too short a run).  Say so, invent nothing.
+            message += f"; squeeze film: {sq.message}"
+    return StageOutput(values=values, units=units, files=files, method=str(res.method), message=message,
+                       nit=int(res.nit))
+
+
+def film_rupture_gap(scene: Scene) -> tuple[float, str]:
+    """Gap ``h_c`` (m) at which the squeeze film ruptures and the solids touch.
+
+    With ``[roughness]``: ``3 * rms_height`` (film-thickness-to-roughness ratio
+    Lambda = 3, the usual onset of asperity contact).  Without it the surfaces are
+    smooth on the model's scale and the film is taken to rupture at the thickness it
+    started with, ``[lubricant].film_thickness`` (solid contact from t = 0, the film
+    only shares the load while it is squeezed out).  A choice of the chain, not a model.
+    """
+    if scene.roughness is not None:
+        return 3.0 * scene.roughness.rms_height, "3 x [roughness].rms_height (Lambda = 3)"
+    return scene.lubricant.film_thickness, "[lubricant].film_thickness (no [roughness]: film ruptures where it started)"
 
 
 # -------------------------------------------------------- tribospectroscopy
