@@ -56,6 +56,27 @@ def test_geike_popov_profiles_keep_height_and_slope(rng):
     assert np.sqrt(np.mean((-g2).var(axis=1))) == pytest.approx(1e-6, rel=0.1)
 
 
+def test_mdr_profiles_keep_the_nyquist_mode():
+    # The profile variance must be the two-sided integral of its PSD over the line's modes,
+    # sum_{k=1}^{n/2-1} 2 C1D(q_k) dq + C1D(q_{n/2}) dq (Nyquist once).  A flat C1D on a short
+    # line (n = 16) gives the Nyquist mode 1/15 of the variance: zeroing it (issue 17) gives
+    # 14/15 = 0.933.  Every mode has zero mean over the periodic line, so the sample variance
+    # of a profile is exactly its mode energy; 40000 profiles of 15 degrees of freedom give a
+    # relative standard error sqrt(2/15/40000) = 0.18 % -> 1 % tolerance (5 sigma).
+    n, dx, c = 16, 1e-6, 1e-15
+    dq = 2 * math.pi / (n * dx)
+    from tribolmp.models.contact.rough import _profiles_from_c1d
+
+    _, g = _profiles_from_c1d(lambda q: np.full_like(q, c), n, dx, 40000, np.random.default_rng(7))
+    expected = (2 * (n // 2 - 1) + 1) * c * dq
+    assert np.mean(g.var(axis=1)) == pytest.approx(expected, rel=0.01)
+    # A spectrum with power only at the Nyquist wave number: the profile must not be flat.
+    qn = math.pi / dx
+    _, g = _profiles_from_c1d(lambda q: np.where(np.isclose(q, qn), c, 0.0), n, dx, 40000, np.random.default_rng(8))
+    # one real Gaussian mode: relative standard error of the variance sqrt(2/40000) = 0.7 % -> 4 %
+    assert np.mean(g.var(axis=1)) == pytest.approx(c * dq, rel=0.04)
+
+
 def test_ensembles_use_the_explicit_rng():
     a = mdr_profiles_from_psd(PSD, 64, DX, 3, np.random.default_rng(5))[1]
     b = mdr_profiles_from_psd(PSD, 64, DX, 3, np.random.default_rng(5))[1]

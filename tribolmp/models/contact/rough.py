@@ -166,11 +166,12 @@ def _profiles_from_c1d(c1d_of_q: Callable, n: int, dx: float, n_realizations: in
     amp = np.sqrt(2.0 * c * dq)
     A = amp * (rng.standard_normal((R, q.size)) + 1j * rng.standard_normal((R, q.size)))
     if n % 2 == 0:
-        A[:, -1] = amp[-1] * math.sqrt(2.0) * rng.standard_normal(R)  # Nyquist mode is real
+        # The Nyquist mode is real and appears once in the two-sided sum (variance C1D dq, half
+        # that of a +-q pair): a real amplitude with <A^2> = 4 C1D dq, which irfft weights by 1/2.
+        A[:, -1] = amp[-1] * math.sqrt(2.0) * rng.standard_normal(R)
+    # irfft doubles the 0 < k < n/2 modes and weights Nyquist once: times n/2 this is
+    # Re sum_{0<k<n/2} A_k e^{iqx} + A_{n/2} cos(pi j) / 2, i.e. every mode with its PSD share.
     h = np.fft.irfft(A, n=n, axis=1) * n / 2.0
-    # irfft doubles the k > 0 modes except Nyquist; the factor n/2 maps to Re sum A_k e^{iqx}
-    if n % 2 == 0:
-        h -= (A[:, -1].real[:, None] * np.cos(math.pi * np.arange(n))[None, :]) / 2.0
     x = (np.arange(n) - (n - 1) / 2.0) * dx
     g = h.max(axis=1, keepdims=True) - h
     return x, g
