@@ -105,13 +105,13 @@ class Scene:
         return out
 
 
-def parse_scene(data: dict[str, Any], source: str = "<scene>") -> Scene:
-    """Build a :class:`Scene` from a parsed TOML mapping.
+def parse_scene(data: dict[str, Any] | str, source: str = "<scene>") -> Scene:
+    """Build a :class:`Scene` from a parsed TOML mapping or from TOML text.
 
     Parameters
     ----------
-    data : dict
-        The TOML document as a dict.
+    data : dict or str
+        The TOML document as a dict, or its text (as in a notebook cell).
     source : str
         File name used as message prefix.
 
@@ -120,8 +120,14 @@ def parse_scene(data: dict[str, Any], source: str = "<scene>") -> Scene:
     SceneError
         One line naming the file, ``[section].field``, what was expected and what was received.
     """
+    if isinstance(data, str):
+        try:
+            data = tomllib.loads(data)
+        except tomllib.TOMLDecodeError as exc:
+            raise SceneError("scene", "valid TOML text", str(exc), source) from None
     if not isinstance(data, dict):
-        raise SceneError("scene", "a TOML table", data, source)
+        # Name both accepted kinds: a bare "a TOML table" hid that text works too.
+        raise SceneError("scene", "a mapping (parsed TOML) or TOML text (str)", type(data).__name__, source)
     kwargs: dict[str, Any] = {}
     for key, value in data.items():
         if key not in SECTIONS:
