@@ -111,3 +111,20 @@ def test_bad_input_one_line(run, surface, tmp_path):
         run("contact", "axisymmetric", "--profile", "sphere", "--radius", "1e-3", "--modulus", "1e9", "--indentation", "1e-8", "--work-of-adhesion", "0.1", "--method", "bem"),
         "work_of_adhesion",
     )
+
+
+def test_rough_mdr_flags_closed_lines(run, surface):
+    # At p = 3e9 Pa on E* = 1e11 Pa (p/E* = 0.03, p/(E* h'rms) ~ 0.2) most lines of this 32-point
+    # surface close; at 1e6 Pa none does.  A closed line's stiffness is E* L exactly, so the JSON's
+    # closed_fraction must match the share of rows at the punch limit, and the run warns once.
+    path, h = surface
+    L = 32 * 2e-6
+    res = run("contact", "rough", "--surface", path, "--pixel-size", "2e-6", "--modulus", "1e11", "--pressures", "1e6,3e9",
+              "--realizations", "8", "--seed", "3", "--json")
+    assert res.returncode == 0, res.stderr
+    low, high = json.loads(res.stdout)
+    assert low["closed_fraction"] == 0.0 and low["warnings"] == []
+    assert high["closed_fraction"] > 0.1 and len(high["warnings"]) == 1 and "punch limit" in high["warnings"][0]
+    assert high["stiffness_q90"] == pytest.approx(1e11 * L, rel=1e-12)
+    lines = [ln for ln in res.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith("warning:") and "3e+09 Pa" in lines[0]

@@ -103,6 +103,21 @@ def test_stiffness_vs_load_is_consistent_with_the_spring_row(rng):
     assert "area" not in " ".join(k for k in res if k != "nominal_area")  # never a contact area
 
 
+def test_closed_fraction_counts_lines_at_the_punch_limit(rng):
+    # closed_fraction is the share of lines whose whole row touches; such a line's stiffness is
+    # E* L exactly (its contact length is the row), an independent way to count them.  Warnings
+    # appear exactly for the pressures above 10 %.
+    x, g = mdr_profiles_from_psd(PSD, 64, DX, 40, rng)
+    E, L = 1e11, 64 * DX
+    P = [1e6, 3e8, 1e9, 3e9, 1e10]
+    res = stiffness_vs_load(x, g, E, P)
+    at_limit = np.mean(np.isclose(res.stiffness_all, E * L, rtol=1e-12, atol=0), axis=0)
+    assert np.array_equal(res.closed_fraction, at_limit)
+    assert res.closed_fraction[0] == 0.0 and res.closed_fraction[-1] == 1.0 and 0 < res.closed_fraction[2] < 1
+    flagged = [p for p, c in zip(P, res.closed_fraction) if c > 0.1]
+    assert len(res.warnings) == len(flagged) and all(f"{p:g} Pa" in w for p, w in zip(flagged, res.warnings))
+
+
 def test_single_asperity_touching():
     # One smooth bump (paraboloid of radius Rb) on a flat: at a load that keeps the contact on the
     # bump top, the BEM reproduces Hertz and the MDR profile through the bump does too.

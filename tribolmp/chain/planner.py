@@ -160,51 +160,17 @@ def speed_error_table() -> dict[str, Any] | None:
         return None
 
 
-def choose_contact_method(tolerance: float, table: dict[str, Any] | None) -> dict[str, Any]:
+def choose_contact_method(tolerance: float, table: dict[str, Any] | None, *, reduced_pressures: list[float] | None = None) -> dict[str, Any]:
     """Pick the cheapest measured (method, mesh) whose error is within ``tolerance``.
 
-    Parameters
-    ----------
-    tolerance : float
-        Acceptable relative error of the contact stiffness (dimensionless).
-    table : dict or None
-        ``{"rows": [{"method", "mesh", "rel_error", "time_s"}, ...], "provenance": ...}``.
-
-    Returns
-    -------
-    dict
-        ``method``, ``mesh`` (springs for MDR, grid points per side for BEM),
-        ``expected_error``, ``expected_time_s`` and a one-line ``why``.
+    The choice itself is physics (which solver is valid where) and lives in
+    :func:`tribolmp.models.contact.choice.choose_method`; see there for the
+    table format.  ``reduced_pressures`` (``p / (E* h'_rms)``) selects the
+    table rows of the pressure range the scene asks for.
     """
-    rows = [r for r in (table or {}).get("rows", []) if r.get("rel_error") is not None and r.get("time_s") is not None]
-    if not rows:
-        return {
-            "method": "mdr",
-            "mesh": None,
-            "expected_error": None,
-            "expected_time_s": None,
-            "why": "no measured speed-error table shipped; MDR with [contact].springs (error not quantified)",
-        }
-    ok = [r for r in rows if r["rel_error"] <= tolerance]
-    if ok:
-        best = min(ok, key=lambda r: (r["time_s"], r["rel_error"]))
-        why = (
-            f"cheapest measured solver within tolerance {tolerance:g}: {best['method']} mesh {best['mesh']} "
-            f"(measured error {best['rel_error']:.3g}, {best['time_s']:.3g} s)"
-        )
-    else:
-        best = min(rows, key=lambda r: (r["rel_error"], r["time_s"]))
-        why = (
-            f"no measured solver reaches tolerance {tolerance:g}; most accurate is {best['method']} mesh "
-            f"{best['mesh']} (measured error {best['rel_error']:.3g})"
-        )
-    return {
-        "method": best["method"],
-        "mesh": best["mesh"],
-        "expected_error": best["rel_error"],
-        "expected_time_s": best["time_s"],
-        "why": why,
-    }
+    from ..models.contact.choice import choose_method
+
+    return choose_method(tolerance, table, reduced_pressures=reduced_pressures)
 
 
 # ------------------------------------------------------------------ planner
@@ -321,7 +287,10 @@ def plan_scene(scene: Scene, *, table: dict[str, Any] | None = None) -> Plan:
             surface = "given height map" if scene.roughness.surface_file else "random surface from [roughness]"
             needs, secs = (), ("geometry", "material", "counter_material", "load", "contact", "roughness")
         if c.method == "auto":
-            choice = choose_contact_method(c.tolerance, speed_error_table() if table is None else table)
+            from ..models.contact.choice import reduced_pressures_of_scene
+
+            choice = choose_contact_method(c.tolerance, speed_error_table() if table is None else table,
+                                           reduced_pressures=reduced_pressures_of_scene(scene))
             method, mesh, why = choice["method"], choice["mesh"], "auto: " + choice["why"]
         else:
             choice = {}

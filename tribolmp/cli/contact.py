@@ -6,6 +6,7 @@ Only composes library calls from :mod:`tribolmp.models.contact`; no physics here
 from __future__ import annotations
 
 import argparse
+import sys
 
 from . import emit_json, float_list
 
@@ -99,10 +100,16 @@ def _rough(args) -> int:
         realizations=args.realizations, rng=np.random.default_rng(args.seed),
     )
     rows = res.rows
+    closed = [(r["pressure"], r["closed_fraction"]) for r in rows if r.get("warnings")]
+    if closed:
+        # One line for the whole run; the per-pressure lines are in the JSON rows' "warnings".
+        where = ", ".join(f"{p:g} Pa ({c:.0%})" for p, c in closed)
+        print(f"warning: more than 10 % of the MDR lines are fully in contact at {where}: the stiffness there is "
+              "the punch limit E*L, not a roughness prediction (use --method bem --periodic)", file=sys.stderr)
     if args.json:
         emit_json(rows)
     else:
-        keys = list(rows[0])
+        keys = [k for k in rows[0] if isinstance(rows[0][k], (int, float))]
         print(" ".join(f"{k:>14s}" for k in keys))
         for row in rows:
             print(" ".join(f"{row[k]:14.6g}" for k in keys))

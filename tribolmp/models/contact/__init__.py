@@ -14,12 +14,18 @@ Modules
     zero-padded), the 3D reference.
 ``solve``
     Parameter dataclasses, the method registry and the scene adapter.
+``interfacial``
+    Periodic-BEM interfacial stiffness per unit area (contract C5).
+``choice``
+    The measured speed-error table and the method choice behind ``"auto"``.
 
 Everything is pure numpy/scipy and in SI units.
 """
 
 from __future__ import annotations
 
+from .choice import choose_method
+from .interfacial import interfacial_stiffness
 from .mdr import TangentialMDR, axisymmetric_profile, normal_force
 from .solve import (
     AxisymmetricParams,
@@ -42,4 +48,6 @@ __all__ = [
     "solve",
     "solve_rough",
     "stiffness_vs_pressure",
+    "interfacial_stiffness",
+    "choose_method",
 ]

@@ -42,7 +42,16 @@ __all__ = [
     "mdr_profiles_from_heightmap",
     "stiffness_vs_load",
     "check_heightmap",
+    "fourier_coefficients",
+    "surface_from_coefficients",
+    "rms_gradient",
+    "rms_gradient_of_psd",
+    "CLOSED_FRACTION_LIMIT",
 ]
+
+#: Above this fraction of fully closed MDR lines the ensemble stiffness is the punch limit
+#: ``E* L`` of those lines, not a roughness prediction (issue 17).
+CLOSED_FRACTION_LIMIT = 0.10
 
 
 def self_affine_psd(rms_height: float, hurst: float, rolloff_wavelength: float, short_cutoff_wavelength: float) -> Callable:
@@ -91,6 +100,70 @@ def generate_surface(n: int, pixel_size: float, psd2d: Callable, rng: np.random.
     amp[0, 0] = 0.0
     B = amp * (rng.standard_normal((n, n)) + 1j * rng.standard_normal((n, n)))
     return np.real(np.fft.ifft2(B) * n * n)
+
+
+def fourier_coefficients(psd2d: Callable, side: float, k_max: int, rng: np.random.Generator) -> np.ndarray:
+    """Random Fourier coefficients (m) of a band-limited periodic surface of side ``side``.
+
+    The coefficients ``B[kx + k_max, ky + k_max]`` of the wave vectors
+    ``2 pi (kx, ky) / side`` with ``|kx|, |ky| <= k_max`` are drawn as in
+    :func:`generate_surface` (``<|B|^2> = 2 C2D(q) dq^2``); with ``psd2d``
+    zero beyond ``2 pi k_max / side`` the surface ``Re sum B e^{i q.x}`` is a
+    smooth function that :func:`surface_from_coefficients` samples on any grid
+    finer than ``2 k_max + 1`` points: the same surface at every resolution,
+    which is what a resolution study needs.
+    """
+    L = check_positive("side", side, "m")
+    k_max = check_int("k_max", k_max, 1)
+    k = np.arange(-k_max, k_max + 1)
+    dq = 2 * math.pi / L
+    q = np.hypot(k[:, None], k[None, :]) * dq
+    amp = np.sqrt(psd2d(q) * dq * dq)
+    amp[k_max, k_max] = 0.0
+    return amp * (rng.standard_normal(q.shape) + 1j * rng.standard_normal(q.shape))
+
+
+def surface_from_coefficients(B: np.ndarray, n: int) -> np.ndarray:
+    """Heights (m) on an ``n x n`` grid of the surface ``Re sum B e^{i q.x}`` (see :func:`fourier_coefficients`)."""
+    B = np.asarray(B)
+    k_max = (B.shape[0] - 1) // 2
+    n = check_int("grid_points", n, 2 * k_max + 2)
+    F = np.zeros((n, n), dtype=complex)
+    idx = np.arange(-k_max, k_max + 1) % n
+    F[np.ix_(idx, idx)] = B
+    return np.real(np.fft.ifft2(F) * n * n)
+
+
+def rms_gradient(heights, pixel_size: float) -> float:
+    """Rms gradient magnitude (1) of a periodic height map, by spectral differentiation.
+
+    Exact for a band-limited surface sampled above its Nyquist rate; the
+    Nyquist row/column (no defined derivative) is left out.
+    """
+    h = check_heightmap(heights, pixel_size)
+    ny, nx = h.shape
+    H = np.fft.fft2(h - h.mean())
+    qx = 2 * math.pi * np.fft.fftfreq(nx, d=pixel_size)
+    qy = 2 * math.pi * np.fft.fftfreq(ny, d=pixel_size)
+    if nx % 2 == 0:
+        qx[nx // 2] = 0.0
+    if ny % 2 == 0:
+        qy[ny // 2] = 0.0
+    q2 = qy[:, None] ** 2 + qx[None, :] ** 2
+    return float(math.sqrt(np.sum(q2 * np.abs(H) ** 2) / (nx * ny) ** 2))
+
+
+def rms_gradient_of_psd(rms_height: float, hurst: float, rolloff_wavelength: float, short_cutoff_wavelength: float) -> float:
+    """Rms gradient (1) of :func:`self_affine_psd`: ``sqrt(2 pi int q^3 C2D dq)`` in closed form."""
+    h = check_positive("rms_height", rms_height, "m")
+    H = check_positive("hurst", hurst)
+    qr = 2 * math.pi / check_positive("rolloff_wavelength", rolloff_wavelength, "m")
+    qs = 2 * math.pi / check_positive("short_cutoff_wavelength", short_cutoff_wavelength, "m")
+    norm = qr * qr / 2 + qr * qr * (1 - (qs / qr) ** (-2 * H)) / (2 * H)
+    # int_qr^qs q^3 (q/qr)^(-2-2H) dq = qr^4 [(qs/qr)^(2-2H) - 1] / (2 - 2H)  (log for H = 1)
+    x = qs / qr
+    tail = qr**4 * (math.log(x) if abs(1 - H) < 1e-12 else (x ** (2 - 2 * H) - 1) / (2 - 2 * H))
+    return h * math.sqrt((qr**4 / 4 + tail) / norm)
 
 
 def check_heightmap(heights, pixel_size=None) -> np.ndarray:
@@ -367,8 +440,11 @@ def stiffness_vs_load(
         ``approach`` (median indentation from first touch of each profile, m)
         with ``approach_q10``/``approach_q90``, and the per-realisation arrays
         ``stiffness_all``/``approach_all`` (R x P), and
-        ``closed_realizations`` (fraction of the realisations whose whole
-        row is in contact: a count of profiles, not an area).  No contact area.
+        ``closed_fraction`` (fraction of the lines whose whole row is in
+        contact: a count of profiles, not an area; ``closed_realizations`` is
+        the same array), and ``warnings``: one line per pressure whose
+        ``closed_fraction`` exceeds :data:`CLOSED_FRACTION_LIMIT` (there the
+        median is the punch limit ``E* L``).  No contact area.
     """
     t0 = time.perf_counter()
     x = np.asarray(x, dtype=float)
@@ -392,6 +468,13 @@ def stiffness_vs_load(
         D[:, j] = d
     kq = np.quantile(K, [0.1, 0.5, 0.9], axis=0)
     dq = np.quantile(D, [0.1, 0.5, 0.9], axis=0)
+    # A line is closed when the indentation reaches its deepest point: every spring touches.
+    closed = np.mean(D >= g.max(axis=1)[:, None], axis=0)
+    warnings = [
+        f"MDR: {c:.0%} of the lines are fully in contact at {p:g} Pa (> {CLOSED_FRACTION_LIMIT:.0%}): "
+        f"the stiffness is the punch limit E*L of those lines, not a roughness prediction"
+        for p, c in zip(P, closed) if c > CLOSED_FRACTION_LIMIT
+    ]
     res = Result(
         pressure=P,
         force=P * A,
@@ -401,7 +484,8 @@ def stiffness_vs_load(
         approach=dq[1],
         approach_q10=dq[0],
         approach_q90=dq[2],
-        closed_realizations=np.mean(np.all(D[:, :, None] >= g[:, None, :], axis=2), axis=0),
+        closed_fraction=closed,
+        closed_realizations=closed,
         stiffness_all=K,
         approach_all=D,
         nominal_area=A,
@@ -411,8 +495,9 @@ def stiffness_vs_load(
         units={
             "pressure": "Pa", "force": "N", "stiffness": "N/m", "stiffness_q10": "N/m", "stiffness_q90": "N/m",
             "approach": "m", "approach_q10": "m", "approach_q90": "m", "nominal_area": "m^2", "line_length": "m",
-            "closed_realizations": "1",
+            "closed_realizations": "1", "closed_fraction": "1",
         },
+        warnings=warnings,
     )
     res["time_s"] = time.perf_counter() - t0
     res["message"] = f"{R} realisations x {P.size} pressures; the MDR contact length is not a contact area"

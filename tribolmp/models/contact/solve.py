@@ -335,6 +335,8 @@ def _rough_mdr(h, dx, E, pressures, periodic, realizations, rng) -> Result:
                 approach=float(res.approach[j]),
                 approach_q10=float(res.approach_q10[j]),
                 approach_q90=float(res.approach_q90[j]),
+                closed_fraction=float(res.closed_fraction[j]),
+                warnings=[w for w in res.warnings if f" at {float(p):g} Pa " in w],
                 time_s=T / len(res.pressure),
             )
         )
@@ -378,6 +380,7 @@ def _rough_bem(h, dx, E, pressures, periodic, realizations, rng) -> Result:
         area_fraction=np.array([r["area_fraction"] for r in rows]),
         periodic=bool(periodic),
         method="bem",
+        warnings=[],
         nit=nit,
         time_s=time.perf_counter() - t0,
         units={"pressure": "Pa", "force": "N", "stiffness": "N/m", "approach": "m", "mean_gap": "m", "area_fraction": "1"},
@@ -421,8 +424,11 @@ def solve_rough(
     Result
         ``rows``: one dict per pressure with ``pressure``, ``force``,
         ``stiffness``, ``approach``, ``time_s``; MDR rows add
-        ``stiffness_q10``/``stiffness_q90``; BEM rows add ``area_fraction``.
-        The same quantities as arrays, and ``time_s`` in total.
+        ``stiffness_q10``/``stiffness_q90``, ``closed_fraction`` (fraction
+        of the MDR lines fully in contact) and ``warnings`` (one line each
+        when ``closed_fraction`` > 10 %: the stiffness is then the punch limit
+        ``E* L``); BEM rows add ``area_fraction``.  The same quantities as
+        arrays, the result's ``warnings`` list, and ``time_s`` in total.
     """
     from ..base import check_int, check_positive
     from .rough import check_heightmap
@@ -504,41 +510,67 @@ def rough_surface(params: RoughParams, rng: np.random.Generator) -> tuple[np.nda
     return generate_surface(params.grid_points, params.pixel_size, psd, rng), params.pixel_size
 
 
-def stiffness_vs_pressure(scene_or_params, *, method: str | None = None, rng: np.random.Generator | None = None) -> Result:
+def stiffness_vs_pressure(scene_or_params, *, method: str | None = None, rng: np.random.Generator | None = None,
+                          tolerance: float | None = None) -> Result:
     """Rough-surface stiffness, force and approach at the scene's ``[load].pressures``.
 
     Parameters
     ----------
     scene_or_params : Scene or RoughParams
         The scene (``[roughness]``, ``[load]``, ``[contact]``) or ready parameters.
-    method : {"mdr", "bem"}, optional
-        Default: ``[contact].method`` (``"auto"`` -> ``"mdr"``, which is
-        within +-30 % of the non-periodic BEM at >= 100x less time, see
-        ``docs/contact.md``).
+    method : {"mdr", "bem", "auto"}, optional
+        Default: ``[contact].method`` (``"mdr"`` for bare parameters).
+        ``"auto"`` picks by :func:`~.choice.choose_method` from the measured
+        rough-surface speed-error table at the scene's reduced pressures
+        ``p / (E* h'_rms)`` and ``tolerance``; if the MDR it picked closes more
+        than 10 % of its lines at some pressure, the periodic BEM is run instead
+        (stated in ``warnings``).
     rng : numpy.random.Generator, optional
         Default: a generator seeded by the scene seed.  The surface (when
         generated) and the MDR ensemble are drawn from independent children.
+    tolerance : float, optional
+        ``"auto"`` only: acceptable relative stiffness error (default
+        ``[contact].tolerance``, else 0.3).
 
     Returns
     -------
     Result
-        As :func:`solve_rough`, plus ``pixel_size`` (m) and ``grid`` (points per side).
+        As :func:`solve_rough`, plus ``pixel_size`` (m), ``grid`` (points per
+        side) and, for ``"auto"``, ``choice`` (the decision and its reason).
     """
     from ...rng import as_generator, spawn
 
     if isinstance(scene_or_params, RoughParams):
-        params, default_method = scene_or_params, "mdr"
+        params, default_method, contact = scene_or_params, "mdr", None
     else:
         params = rough_params_from_scene(scene_or_params)
         contact = getattr(scene_or_params, "contact", None)
         default_method = getattr(contact, "method", "mdr") if contact is not None else "mdr"
     method = method or default_method
-    if method == "auto":
-        method = "mdr"
     rng = as_generator(params.seed if rng is None else rng)
     surf_rng, ens_rng = spawn(rng, 2)
     h, dx = rough_surface(params, surf_rng)
-    res = solve_rough(h, dx, params.modulus, params.pressures, method=method, periodic=params.periodic, realizations=params.realizations, rng=ens_rng)
+    choice = None
+    periodic = params.periodic
+    if method == "auto":
+        from .choice import choose_method, reduced_pressures
+        from .rough import rms_gradient
+
+        tol = tolerance if tolerance is not None else float(getattr(contact, "tolerance", 0.3))
+        choice = choose_method(tol, reduced_pressures=reduced_pressures(params.pressures, params.modulus, rms_gradient(h, dx)))
+        method = choice["method"]
+        if method == "bem":
+            periodic = True  # the table's BEM errors are those of the periodic cell
+    res = solve_rough(h, dx, params.modulus, params.pressures, method=method, periodic=periodic, realizations=params.realizations, rng=ens_rng)
+    if choice is not None and method == "mdr" and res.warnings:
+        from .rough import CLOSED_FRACTION_LIMIT
+
+        warnings = list(res.warnings)
+        res = solve_rough(h, dx, params.modulus, params.pressures, method="bem", periodic=True)
+        res["warnings"] = warnings + [f"auto: MDR closed more than {CLOSED_FRACTION_LIMIT:.0%} of its lines; the periodic BEM was run instead"]
+        choice = dict(choice, method="bem", why=choice["why"] + "; MDR lines closed at run time -> periodic BEM")
+    if choice is not None:
+        res["choice"] = choice
     res["pixel_size"] = dx
     res["grid"] = int(h.shape[0])
     return res
