@@ -13,19 +13,15 @@ power law (n < 1, where the gap closes in finite time), stops at contact.
 ``scheme="explicit"`` (forward Euler in h) is provided only to show the
 failure the seed's singular damper causes at large steps.
 
-Rough surface: mixed lubrication
---------------------------------
+Rough surface: mixed lubrication at the nominal scale
+-----------------------------------------------------
 A 1D MDR profile (springs of stiffness E* dx at gaps g_i, the contact model's
-:func:`~tribolmp.models.contact.mdr.normal_force` when available) with one
-squeeze damper per summit (curvature radius from the profile).  The rigid
-flat at indentation d obeys
-
-    sum_j alpha_j d/dt ln(s_j(d)) ... = W - F_springs(d)
-
-and is stepped with the implicit log form
-``sum_j alpha_j [ln s_j(d_k) - ln s_j(d_{k+1})] / dt + F_springs(d_{k+1}) = W``
-where s_j = gap_j + h_c (h_c: film rupture thickness), solved by bracketing
-(monotone in d), so it is stable at any step and the film gaps stay > -h_c.
+:func:`~tribolmp.models.contact.mdr.normal_force`) carries the solid share of
+the load; the film carries the rest with the resistance of the *apparent*
+area, the nominal Reynolds squeeze film with the roughness as a flow factor
+(:mod:`.flow_factor`), plus the local resistance of each summit as it nears
+contact.  The flat is stepped implicitly in the primitive of the resistance
+(see :func:`mixed_approach`), so it is stable at any step.
 """
 
 from __future__ import annotations
@@ -46,8 +42,8 @@ __all__ = [
     "exact_gap",
     "MixedParams",
     "mixed_approach",
-    "winkler_normal_force",
     "summits",
+    "nominal_film_table",
 ]
 
 SCHEMES = MethodRegistry("film scheme")
@@ -258,25 +254,9 @@ def approach(params: FilmParams, *, scheme: str = "log", rng=None) -> Result:
 # ------------------------------------------------------------------ mixed lubrication
 
 
-def winkler_normal_force(x, g, d, E_star) -> float:
-    """Stand-in MDR normal force (N): springs E* dx compressed by max(0, d - g)."""
-    dx = float(x[1] - x[0])
-    return float(E_star * dx * np.sum(np.clip(d - np.asarray(g), 0.0, None)))
-
-
-def _mdr_normal_force():
-    """The contact engineer's MDR ``normal_force`` when present, else the local stand-in."""
-    try:
-        from ..contact.mdr import normal_force  # type: ignore[import-not-found]
-
-        return normal_force, "contact.mdr"
-    except ImportError:
-        return winkler_normal_force, "winkler-stand-in"
-
-
 @dataclass(frozen=True)
 class MixedParams:
-    """Mixed lubrication of a rough 1D MDR profile pressed by a rigid flat (SI).
+    """Mixed lubrication of a rough apparent contact: MDR springs plus the nominal film (SI).
 
     Attributes
     ----------
@@ -285,15 +265,30 @@ class MixedParams:
     E_star : float
         Effective modulus E* in Pa.
     load : float
-        Constant load W in N.
+        Constant load W in N on the apparent contact.
     gap0 : float
         Initial distance of the flat from the highest point in m.
     film_cutoff : float
-        Film rupture thickness h_c in m (the damper uses gap + h_c).
+        Film rupture thickness h_c in m (the summit dampers use gap + h_c).
     duration : float
         Simulated time in s.
     steps : int
         Time steps.
+    apparent_length : float or None
+        Side (square) or diameter (disc) of the apparent contact in m; default
+        the length of the MDR line (the line represents an L x L area).
+    apparent_shape : str
+        ``"square"`` or ``"disc"``.
+    flow_factor : str
+        Film conductance of the rough gap: ``"bruggeman"`` (derived, default),
+        ``"patir-cheng"`` (published fit) or ``"smooth"`` (no roughness in the film).
+    nominal_film : bool
+        Include the nominal squeeze film of the apparent area (switch it off
+        only for a single smooth summit, e.g. a sphere, whose one damper is
+        already its whole Reynolds film).
+    summit_dampers : bool
+        Add the local 6 pi eta R_j^2 / (gap_j + h_c) resistance of each summit
+        (the inner, near-contact singularity of the film; see the module notes).
     """
 
     viscosity: float = param(0.1, unit="Pa s", lo=0.0, lo_open=True, hi=1e9)
@@ -303,9 +298,16 @@ class MixedParams:
     film_cutoff: float = param(1e-9, unit="m", lo=0.0, lo_open=True, hi=1e-3)
     duration: float = param(1e-2, unit="s", lo=0.0, lo_open=True, hi=1e12)
     steps: int = param(200, lo=1, hi=10**7)
+    apparent_length: float | None = param(None, unit="m", lo=0.0, lo_open=True, hi=10.0)
+    apparent_shape: str = param("square", choices=("square", "disc"))
+    flow_factor: str = param("bruggeman", choices=("bruggeman", "patir-cheng", "smooth"))
+    nominal_film: bool = param(True)
+    summit_dampers: bool = param(True)
 
     def __post_init__(self) -> None:
         validate_dataclass(self)
+        if not (self.nominal_film or self.summit_dampers):
+            raise ParameterError("nominal_film", "True when summit_dampers is False (no film at all)", False)
 
 
 def summits(x, g):
@@ -323,8 +325,52 @@ def summits(x, g):
     return idx[ok], 2.0 / curv[ok]
 
 
+def nominal_film_table(g, params: MixedParams, length: float, d_lo: float, d_hi: float, points: int = 801):
+    """Nominal film resistance c(d) (N s/m) and its primitive on a grid of indentations.
+
+    The grid is uniform in ln u (u = mean(g) - d, the flat-to-mean-plane
+    separation), where c u is smooth, and the primitive
+    ``Phi(d) = int_{d_lo}^d c dd'`` (N s) is the trapezoid rule in ln u.
+
+    Returns
+    -------
+    (d, c, Phi, closed_fraction) : ndarrays on the grid
+    """
+    from .flow_factor import film_resistance
+
+    gbar = float(np.mean(g))
+    u = np.geomspace(gbar - d_lo, gbar - d_hi, points)
+    d = gbar - u
+    gaps = np.clip(np.asarray(g)[None, :] - d[:, None], 0.0, None)
+    c, _, closed = film_resistance(gaps, params.viscosity, params.apparent_shape, length, method=params.flow_factor,
+                                   separation=u, sigma=float(np.std(g)))
+    cu = c * u
+    # dd = -du = -u d(ln u): Phi increases with d
+    dphi = 0.5 * (cu[1:] + cu[:-1]) * -np.diff(np.log(u))
+    Phi = np.concatenate([[0.0], np.cumsum(dphi)])
+    return d, c, Phi, closed
+
+
 def mixed_approach(x, g, params: MixedParams, *, normal_force=None) -> Result:
-    """Rigid flat pressed onto a rough MDR profile through a film: implicit log stepping.
+    """Rigid flat pressed onto a rough MDR profile through the film of the apparent contact.
+
+    The flat at indentation d (d < 0: separated from the highest point) obeys
+    the quasi-static balance
+
+        c(d) dd/dt + F_s(d) = W ,
+
+    ``F_s``: the MDR springs (the solid share, :func:`tribolmp.models.contact.mdr.normal_force`);
+    ``c(d)``: the film resistance of the apparent area, the nominal Reynolds
+    squeeze film with the roughness as a flow factor
+    (:func:`~.flow_factor.film_resistance` on the rigid gaps ``max(g - d, 0)``),
+    plus, with ``summit_dampers``, ``sum_j 6 pi eta R_j^2 / (g_j - d + h_c)``
+    for the summits of the profile (the near-contact singularity the nominal
+    average misses).  Each step is implicit in the primitive of c
+    (``Phi(d_{k+1}) - Phi(d_k) = (W - F_s(d_{k+1})) dt``, monotone in
+    d_{k+1}, solved by bracketing), so it is stable at any step and never
+    passes the dry equilibrium.  When the closed fraction of the rigid gap
+    reaches 1/2 before the springs carry W, the Bruggeman film seals
+    (``sealed = True``): the fluid left is trapped and keeps ``W - F_s``.
 
     Parameters
     ----------
@@ -332,40 +378,36 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None) -> Result:
         Spring positions (m, uniform spacing) and MDR gap g(x) >= 0 (m, min 0).
     params : MixedParams
     normal_force : callable, optional
-        ``normal_force(x, g, d, E_star) -> N``; default: the contact model's MDR
-        function, or the Winkler stand-in when that module is not installed.
+        ``normal_force(x, g, d, E_star) -> N``; default the contact model's MDR.
 
     Returns
     -------
     Result
-        ``t`` (s), ``d`` (indentation of the flat, m; negative = still separated),
-        ``spring_force`` (N), ``fluid_force`` (N), ``contact_time`` (s, first
-        spring contact, NaN if none), ``d_dry`` (m, the dry equilibrium under W),
-        ``min_film`` (m), ``normal_force_source``.
+        ``t`` (s), ``d`` (m), ``separation`` (m, flat to mean plane),
+        ``spring_force`` (N), ``fluid_force`` (N), ``film_resistance`` (N s/m, total c(d)),
+        ``nominal_resistance`` (N s/m, the apparent-area part), ``contact_time``
+        (s, first spring contact, NaN if none), ``d_dry`` (m), ``sealed``,
+        ``closed_fraction`` (rigid-gap closed fraction at the end), ``min_film`` (m).
     """
+    from scipy.interpolate import CubicSpline
     from scipy.optimize import brentq
 
-    nf, source = (normal_force, "user") if normal_force is not None else _mdr_normal_force()
+    from ..contact.mdr import normal_force as mdr_normal_force
+
+    nf, source = (normal_force, "user") if normal_force is not None else (mdr_normal_force, "contact.mdr")
     x, g = np.asarray(x, float), np.asarray(g, float)
     p = params
+    dx = float(x[1] - x[0])
+    length = p.apparent_length if p.apparent_length is not None else g.size * dx
     idx, Rj = summits(x, g)
-    if idx.size == 0:
+    if p.summit_dampers and idx.size == 0:
         raise ParameterError("g", "a profile with at least one summit (local minimum of the gap)", "none")
-    alpha = 6.0 * math.pi * p.viscosity * Rj**2
-    gj = g[idx]
+    alpha = 6.0 * math.pi * p.viscosity * Rj**2 if p.summit_dampers else np.zeros(0)
+    gj = g[idx] if p.summit_dampers else np.zeros(0)
     hc = p.film_cutoff
 
     def log_s(d):
         return np.log(np.clip(gj - d, 0.0, None) + hc)
-
-    t = np.linspace(0.0, p.duration, p.steps + 1)
-    d = np.empty_like(t)
-    Fs = np.zeros_like(t)
-    Ff = np.zeros_like(t)
-    d[0] = -p.gap0
-    res = Result(method="implicit-log")
-    # upper bracket: the dry equilibrium is the furthest the flat can go
-    gmax = float(g.max())
 
     def dry(dd):
         return nf(x, g, dd, p.E_star) - p.load
@@ -373,38 +415,79 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None) -> Result:
     hi = 1e-12
     while dry(hi) < 0:
         hi *= 2.0
-        if hi > 1e3 * (gmax + p.gap0):
+        if hi > 1e3 * (float(g.max()) + p.gap0):
             raise BlowUpError(f"load {p.load:g} N exceeds what the profile can carry")
     d_dry = brentq(dry, -1e-300 if dry(0.0) < 0 else -p.gap0, hi, xtol=1e-18, rtol=1e-14) if p.load > 0 else 0.0
+    d0 = -p.gap0
+    # the film seals where half the rigid gap is closed (Bruggeman; the median of g)
+    d_seal = float(np.median(g)) if p.flow_factor == "bruggeman" and p.nominal_film else math.inf
+    sealed = d_seal <= d_dry
+    d_top = min(d_dry, d_seal * (1.0 - 1e-9)) if sealed else d_dry
+    dg, cg, Phig, closedg = nominal_film_table(g, p, length, d0, d_top)
+    # Phi is smooth in ln u; spline it there (exact at the nodes, monotone to round-off)
+    gbar = float(np.mean(g))
+    lnu = np.log(gbar - dg)
+    on = 1.0 if p.nominal_film else 0.0
+    phi_spline = CubicSpline(lnu[::-1], on * Phig[::-1])
+    c_spline = CubicSpline(lnu[::-1], np.log(cg[::-1]))
+
+    def phi_nom(dd):
+        return float(phi_spline(math.log(gbar - dd)))
+
+    t = np.linspace(0.0, p.duration, p.steps + 1)
+    d = np.empty_like(t)
+    Fs = np.zeros_like(t)
+    d[0] = d0
+    res = Result(method="implicit-primitive")
     with timed(res):
         for k in range(1, t.size):
             dt = t[k] - t[k - 1]
-            ls0 = log_s(d[k - 1])
+            ls0, ph0 = log_s(d[k - 1]), phi_nom(d[k - 1])
 
             def resid(dd):
-                return float(np.sum(alpha * (ls0 - log_s(dd)))) / dt + nf(x, g, dd, p.E_star) - p.load
+                film = phi_nom(dd) - ph0 + float(np.sum(alpha * (ls0 - log_s(dd))))
+                return film / dt + nf(x, g, dd, p.E_star) - p.load
 
             lo = d[k - 1]
-            if resid(lo) >= 0:  # already at/beyond equilibrium: stay
+            if lo >= d_top or resid(lo) >= 0:  # at/beyond equilibrium (or sealed): stay
                 d[k] = lo
+            elif resid(d_top) <= 0:  # reaches the end of the table within this step
+                d[k] = d_top
             else:
-                d[k] = brentq(resid, lo, max(hi, lo + 1e-15), xtol=1e-18, rtol=1e-14)
+                d[k] = brentq(resid, lo, d_top, xtol=1e-18, rtol=1e-14)
             Fs[k] = nf(x, g, d[k], p.E_star)
-            Ff[k] = p.load - Fs[k]
-    film = gj[None, :] - d[:, None]
-    touched = np.nonzero(d > 0.0)[0] if (g.min() == 0.0) else np.nonzero(film.min(axis=1) <= 0)[0]
+    Fs[0] = nf(x, g, d[0], p.E_star)
+    Ff = p.load - Fs
+    Ff[0] = p.load
+    c_nom = on * np.exp(c_spline(np.log(gbar - d)))
+    c_sum = np.array([float(np.sum(alpha / (np.clip(gj - dd, 0.0, None) + hc))) for dd in d])
+    film = g[None, :] - d[:, None]
+    touched = np.nonzero(film.min(axis=1) <= 0)[0]
     res.update(
         t=t,
         d=d,
+        separation=gbar - d,
         spring_force=Fs,
         fluid_force=Ff,
+        film_resistance=c_nom + c_sum,
+        nominal_resistance=c_nom,
+        summit_resistance=c_sum,
         d_dry=float(d_dry),
+        sealed=bool(sealed),
+        closed_fraction=float(np.mean(g <= d[-1])),
         contact_time=float(t[touched[0]]) if touched.size else float("nan"),
         min_film=float(film.min()),
         summits=int(idx.size),
+        apparent_length=float(length),
         nit=p.steps,
         normal_force_source=source,
-        units={"t": "s", "d": "m", "spring_force": "N", "fluid_force": "N", "d_dry": "m", "contact_time": "s", "min_film": "m"},
-        message=f"{idx.size} summit dampers, springs from {source}",
+        units={"t": "s", "d": "m", "separation": "m", "spring_force": "N", "fluid_force": "N",
+               "film_resistance": "N s/m", "nominal_resistance": "N s/m", "summit_resistance": "N s/m",
+               "d_dry": "m", "contact_time": "s", "min_film": "m", "apparent_length": "m"},
+        message=(f"nominal film ({p.flow_factor}, {p.apparent_shape} {length:.3g} m)"
+                 + (f" + {idx.size} summit dampers" if p.summit_dampers else "") + f", springs from {source}"
+                 + ("; the film sealed (closed fraction 1/2) before the springs carried the load" if sealed else "")),
     )
+    if sealed:
+        res.status = 1
     return res
