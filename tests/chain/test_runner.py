@@ -107,17 +107,6 @@ def test_setup_error_in_a_stage_maps_to_setup_error(tmp_path, calls, monkeypatch
         runner_mod.run_chain(_scene(), tmp_path / "run", quiet=True, figures=False)
 
 
-def test_missing_model_is_reported_not_faked(tmp_path, calls, monkeypatch):
-    def unavailable(ctx):
-        stages_mod.require_model("tribolmp.models.does_not_exist", "solve")
-
-    monkeypatch.setitem(stages_mod.STAGE_FUNCS, "tribospectroscopy", unavailable)
-    run = runner_mod.run_chain(_scene(), tmp_path / "run", quiet=True, figures=False)
-    row = next(r for r in _report(tmp_path / "run")["stages"] if r["name"] == "tribospectroscopy")
-    assert row["ran"] is False and row["reason"].startswith("model not available: tribolmp.models.does_not_exist")
-    assert run.entries["tribospectroscopy"].status == "unavailable"
-
-
 def test_interrupt_keeps_finished_stages_and_resumes(tmp_path, calls, monkeypatch):
     real_contact = stages_mod.STAGE_FUNCS["contact"]
 

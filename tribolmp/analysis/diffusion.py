@@ -6,7 +6,7 @@ import numpy as np
 from MDAnalysis.analysis.base import AnalysisBase
 
 from ..errors import DataFileError, ParameterError
-from ..models.base import check_range
+from ..params import check_range
 from .outputs import MOL_BASE, MOL_LOWER, MOL_SLIDER, MOL_UPPER, NM, FromOutput, MCAMeta
 from .profiles import interface_height
 from .stats import linear_fit, msd_fft

@@ -15,7 +15,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import DataFileError
-from ..models.base import Result, check_range
+from ..params import check_range
+from ..results import Result
 from .outputs import read_friction_csv
 from .stats import block_standard_error, mser_truncation
 

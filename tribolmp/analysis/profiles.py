@@ -20,7 +20,7 @@ import numpy as np
 from MDAnalysis.analysis.base import AnalysisBase
 
 from ..errors import DataFileError, ParameterError
-from ..models.base import check_range
+from ..params import check_range
 from .outputs import MOL_SLIDER, MOL_UPPER, NM, FromOutput, MCAMeta
 from .stats import crossing_heights, isotonic_fit
 

@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import datetime as _dt
 import json
-import math
 import os
 from pathlib import Path
 from typing import Any
@@ -33,31 +32,25 @@ from typing import Any
 import numpy as np
 
 from ..errors import DataFileError
+from ..jsonio import finite_or_none
+from ..records import Rates
 from .outputs import read_friction_csv, read_meta
 
 __all__ = ["compute_rates", "RATES_UNITS", "steady_frames"]
 
-#: Unit of every numeric field of rates.json.
+#: Unit of every numeric field of rates.json: the shared record's fields (tribolmp.records.Rates)
+#: plus the analysis's own diagnostics.
 RATES_UNITS = {
-    "mu": "1",
-    "mu_err": "1",
-    "layer_depth_m": "m",
+    **Rates.units(),
     "layer_offset_m": "m",
     "mixed_width_m": "m",
     "penetration_upper_m": "m",
     "penetration_lower_m": "m",
-    "diffusion_m2_s": "m^2/s",
     "diffusion_err_m2_s": "m^2/s",
-    "transfer_rate": "1/m",
     "net_transfer_rate": "1/m",
-    "wear_rate": "1/s",
-    "detachment_rate": "1/s",
-    "reattachment_rate": "1/s",
     "links_broken_per_s": "1/s",
     "links_formed_per_s": "1/s",
     "link_break_rate": "1/s",
-    "step_length_m": "m",
-    "step_time_s": "s",
     "atom_steps_per_s": "1/s",
     "time_s": "s",
     "steady_start_s": "s",
@@ -65,8 +58,6 @@ RATES_UNITS = {
     "mu_n_independent": "1",
     "analysis_start_s": "s",
     "velocity_m_s": "m/s",
-    "pressure_Pa": "Pa",
-    "automaton_diameter_m": "m",
 }
 
 
@@ -87,14 +78,6 @@ def steady_frames(times_s: np.ndarray, start_s: float, min_frames: int = 8) -> t
     return np.arange(n - k, n), (
         f"only {idx.size} dump frames after the friction steady start {start_s:.3g} s; analysed the last {k}"
     )
-
-
-def _finite(x: Any) -> float | None:
-    try:
-        v = float(x)
-    except (TypeError, ValueError):
-        return None
-    return v if math.isfinite(v) else None
 
 
 def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float | None = None,
@@ -173,7 +156,7 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
     mt = attempt("transfer", lambda: MassTransfer(u, meta, window=window))
 
     d = meta.automaton_diameter_m
-    layer = None if vp is None else _finite(vp.layer_depth_m)
+    layer = None if vp is None else finite_or_none(vp.layer_depth_m)
     resolved = vp is not None and bool(vp.layer_resolved) and layer is not None
     if resolved and layer >= d:
         l_step, l_src = layer, "layer_depth_m"
@@ -183,7 +166,7 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
             "step_length_m: no sheared layer of two bins or more resolved (slip on a single plane); "
             "using the automaton diameter"
         )
-    D = _finite(ld.diffusion_m2_s) if ld is not None else None
+    D = finite_or_none(ld.diffusion_m2_s) if ld is not None else None
     if D is not None and D <= 0:
         warnings_.append(f"diffusion: fitted D = {D:.3g} m^2/s is not positive (no lateral mixing resolved)")
         D = None
@@ -192,10 +175,10 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
         warnings_.append("step_time_s: undefined without a positive diffusion coefficient")
 
     def get(res, key):
-        return None if res is None else _finite(res[key])
+        return None if res is None else finite_or_none(res[key])
 
     def series(res, key):
-        return None if res is None else [_finite(v) for v in res[key]]
+        return None if res is None else [finite_or_none(v) for v in res[key]]
 
     time_s = meta.time_s if meta.time_s is not None else float(fr["time_s"][-1])
     rates: dict[str, Any] = {
@@ -225,7 +208,7 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
         "step_length_m": l_step,
         "step_length_source": l_src,
         "step_time_s": tau,
-        "time_s": _finite(time_s),
+        "time_s": finite_or_none(time_s),
         "analysis_start_s": float(times[sel][0]) if sel.size else None,
         "velocity_m_s": meta.velocity_m_s,
         "pressure_Pa": meta.pressure_Pa,

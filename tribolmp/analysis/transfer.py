@@ -33,7 +33,7 @@ import numpy as np
 from MDAnalysis.analysis.base import AnalysisBase
 
 from ..errors import DataFileError
-from ..models.base import check_int, check_range
+from ..params import check_int, check_range
 from .diffusion import Unwrapper, surface_selection
 from .outputs import MOL_LOWER, MOL_SLIDER, MOL_UPPER, NM, FromOutput, MCAMeta
 from .profiles import interface_height

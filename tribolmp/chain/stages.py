@@ -3,33 +3,26 @@
 Each stage function takes a :class:`StageContext` and returns a
 :class:`StageOutput` (numbers in SI with their units, plus the hand-off files
 it wrote into ``ctx.workdir``).  No physics lives here: every number comes from
-a model package, imported lazily inside the stage so that a scene imports only
-the models it needs.  A model package that is not installed makes the stage
-raise :class:`ModelUnavailable`, which the report records as
-``ran: false, reason: "model not available: ..."`` instead of inventing numbers.
+a model package, imported (plainly) inside the stage function so that a scene
+imports only the models it needs.
 """
 
 from __future__ import annotations
 
-import importlib
 import json
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 import numpy as np
 
 from ..scene import Scene
-from .cache import CachedStage, atomic_write_json
+from ..jsonio import atomic_write_json, scalars
+from .cache import CachedStage
 from .planner import StagePlan
 
-__all__ = ["StageContext", "StageOutput", "ModelUnavailable", "STAGE_FUNCS", "require_model"]
-
-
-class ModelUnavailable(Exception):
-    """The model package a stage needs is not installed (or lacks the contract API)."""
+__all__ = ["StageContext", "StageOutput", "STAGE_FUNCS"]
 
 
 @dataclass
@@ -58,45 +51,15 @@ class StageOutput:
     provenance: dict[str, Any] = field(default_factory=dict)
 
 
-def require_model(module: str, *names: str) -> ModuleType:
-    """Import ``module`` and check it exposes ``names``; raise :class:`ModelUnavailable` otherwise."""
-    try:
-        mod = importlib.import_module(module)
-    except ImportError as exc:
-        raise ModelUnavailable(f"{module} ({' '.join(str(exc).split())})") from None
-    missing = [n for n in names if not hasattr(mod, n)]
-    if missing:
-        raise ModelUnavailable(f"{module} lacks {', '.join(missing)}")
-    return mod
-
-
-def _scalars(d: dict[str, Any]) -> dict[str, Any]:
-    """JSON-friendly copy of the scalar (and short list) entries of a result."""
-    out = {}
-    for k, v in d.items():
-        if isinstance(v, (np.floating, np.integer)):
-            v = v.item()
-        if isinstance(v, (bool, int, float, str)) or v is None:
-            out[k] = v
-        elif isinstance(v, np.ndarray) and v.size <= 64:
-            out[k] = v.tolist()
-        elif isinstance(v, (list, tuple)) and len(v) <= 64 and all(isinstance(x, (int, float, np.floating)) for x in v):
-            out[k] = [float(x) for x in v]
-    return out
-
-
 def _rates_from_upstream(ctx: StageContext) -> tuple[dict[str, Any] | None, str]:
     """The rates dict and where it came from: nanoscale's rates.json, the scene's [rates], or none."""
     if "nanoscale" in ctx.upstream:
         up = ctx.upstream["nanoscale"]
         return json.loads(up.file("rates").read_text()), f"nanoscale stage {up.key} (rates.json)"
     if ctx.scene.rates is not None:
-        rates = ctx.scene.to_dict()["rates"]
-        # The hand-off is a file even when the scene gives the rates, so every stage reads rates the same way.
-        rates["units"] = {
-            "mu": "1", "diffusion_m2_s": "m^2/s", "transfer_rate": "1/m", "wear_rate": "1/s",
-            "layer_depth_m": "m", "step_length_m": "m", "step_time_s": "s",
-        }
+        # The shared record (tribolmp.records.Rates); the hand-off is a file even when the scene
+        # gives the rates, so every stage reads rates the same way.
+        rates = {k: v for k, v in ctx.scene.rates.to_record().to_dict().items() if v is not None}
         atomic_write_json(ctx.workdir / "rates.json", rates)
         return rates, "[rates]"
     return None, ""
@@ -169,9 +132,7 @@ def nanoscale(ctx: StageContext) -> StageOutput:
     from ..errors import LammpsError
     from ..rng import lammps_seed
 
-    mca = require_model("tribolmp.lammps.mca", "run_mca", "params_from_scene")
-    # Without the rates analysis, run_mca writes no rates.json: say so before spending minutes in LAMMPS.
-    require_model("tribolmp.analysis.rates", "compute_rates")
+    from ..lammps import mca
     params = mca.params_from_scene(ctx.scene)
     out = ctx.workdir / "mca"
     # An interrupted run left restart files in the (kept) partial folder: continue from them.
@@ -198,8 +159,8 @@ def nanoscale(ctx: StageContext) -> StageOutput:
         raise RuntimeError(f"run_mca finished without writing {rates_path.name}")
     rates = json.loads(rates_path.read_text())
     meta = json.loads((out / "meta.json").read_text()) if (out / "meta.json").exists() else {}
-    values = {k: v for k, v in _scalars(rates).items()}
-    values["meta"] = _scalars(meta)
+    values = {k: v for k, v in scalars(rates).items()}
+    values["meta"] = scalars(meta)
     files = {"rates": "mca/rates.json"}
     for key, name in (("friction", "friction.csv"), ("traj", "traj.lammpstrj"), ("meta", "meta.json"), ("log", "run.log")):
         if (out / name).exists():
@@ -212,7 +173,7 @@ def nanoscale(ctx: StageContext) -> StageOutput:
         method=str(res.get("method", "mca")),
         message=str(res.get("message", "")),
         nit=int(res.get("nit", 0) or 0),
-        provenance={"lammps_seed_from": ctx.seed, "resumed": resume, "discarded_restarts": discarded, "params": _scalars(dict(vars(params))),
+        provenance={"lammps_seed_from": ctx.seed, "resumed": resume, "discarded_restarts": discarded, "params": scalars(dict(vars(params))),
                     "rates_provenance": rates.get("provenance", {}), "warnings": rates.get("warnings", [])},
     )
 
@@ -223,7 +184,7 @@ def nanoscale(ctx: StageContext) -> StageOutput:
 @_stage("topography")
 def topography(ctx: StageContext) -> StageOutput:
     """Eq. 23 with the upstream rates -> final height map (``surface.npy`` + sidecar JSON) and its PSD."""
-    topo = require_model("tribolmp.models.topography", "params_from_scene", "evolve", "save_height_map")
+    from ..models import topography as topo
     rates, rates_src = _rates_from_upstream(ctx)
     params = topo.params_from_scene(ctx.scene, rates=rates)
     res = topo.evolve(params, rng=ctx.rng, scheme=ctx.scene.topography.scheme)
@@ -235,9 +196,9 @@ def topography(ctx: StageContext) -> StageOutput:
     if (ctx.workdir / "rates.json").exists():
         files["rates"] = "rates.json"
     # Bookkeeping fields (method, message, wall time, counters) go to the record, not the numbers.
-    values = {k: v for k, v in _scalars(res).items() if k not in ("status", "method", "message", "time_s", "nit", "history")}
+    values = {k: v for k, v in scalars(res).items() if k not in ("status", "method", "message", "time_s", "nit", "history")}
     values["rates_source"] = rates_src or "[topography]"
-    values["params"] = _scalars(dict(vars(params)))
+    values["params"] = scalars(dict(vars(params)))
     return StageOutput(
         values=values,
         units={k: v for k, v in res.units.items() if k in values},
@@ -254,7 +215,7 @@ def topography(ctx: StageContext) -> StageOutput:
 @_stage("lubrication")
 def lubrication(ctx: StageContext) -> StageOutput:
     """Squeeze-force summary of the film (reduced damper vs Reynolds/Brenner) and, with [polishing], polishing."""
-    summ = require_model("tribolmp.models.lubrication.summary", "lubrication_summary")
+    from ..models.lubrication import summary as summ
     res = summ.lubrication_summary(ctx.scene)
     gap = np.asarray(res.gap)
     film = ctx.scene.lubricant.film_thickness
@@ -282,7 +243,8 @@ def lubrication(ctx: StageContext) -> StageOutput:
     files = {"curves": "curves.npz"}
     method, message = res.method, res.message
     if ctx.scene.polishing is not None:
-        pol = require_model("tribolmp.models.lubrication.polishing", "params_from_scene", "polish")
+        from ..models.lubrication import polishing as pol
+
         pres = pol.polish(pol.params_from_scene(ctx.scene), rng=ctx.rng)
         np.savez(ctx.workdir / "polishing.npz", t=pres.t, sq=pres.sq, sa=pres.sa, removed_volume=pres.removed_volume)
         np.save(ctx.workdir / "polished.npy", pres.h)
@@ -303,18 +265,19 @@ def lubrication(ctx: StageContext) -> StageOutput:
 @_stage("contact")
 def contact(ctx: StageContext) -> StageOutput:
     """Normal stiffness against load: rough surface (evolved, given or generated) or axisymmetric profile."""
-    cs = require_model("tribolmp.models.contact.solve", "params_from_scene", "solve", "solve_rough", "rough_surface", "load_surface")
+    from ..models.contact.solve import load_surface, rough_params_from_scene, rough_surface, solve_rough
+
     scene, opts = ctx.scene, ctx.plan.options
     method = opts["method"]
     if scene.geometry.profile != "rough":
-        return _contact_axisymmetric(ctx, cs, method)
+        return _contact_axisymmetric(ctx, method)
     import dataclasses
 
-    params = cs.rough_params_from_scene(scene)
+    params = rough_params_from_scene(scene)
     surf_rng, ens_rng = ctx.rng.spawn(2)
     mesh_note = ""
     if "topography" in ctx.upstream:
-        h, dx = cs.load_surface(ctx.upstream["topography"].file("surface"))
+        h, dx = load_surface(ctx.upstream["topography"].file("surface"))
         source = "evolved surface (topography stage)"
         if opts.get("mesh") is not None:
             mesh_note = f"mesh fixed by the evolved surface ({h.shape[0]} points), not the table's {opts['mesh']}"
@@ -324,9 +287,9 @@ def contact(ctx: StageContext) -> StageOutput:
             L = params.grid_points * params.pixel_size
             params = dataclasses.replace(params, grid_points=int(opts["mesh"]), pixel_size=L / int(opts["mesh"]))
             mesh_note = f"BEM grid {opts['mesh']} from the speed-error table (L = {L:g} m)"
-        h, dx = cs.rough_surface(params, surf_rng)
+        h, dx = rough_surface(params, surf_rng)
         source = f"height map {params.surface_file}" if params.surface_file else "random surface from [roughness]"
-    res = cs.solve_rough(
+    res = solve_rough(
         h, dx, params.modulus, params.pressures, method=method, periodic=params.periodic,
         realizations=params.realizations, rng=ens_rng,
     )
@@ -348,15 +311,17 @@ def contact(ctx: StageContext) -> StageOutput:
                        message=f"{method} on {source}, {h.shape[0]}x{h.shape[1]} grid", nit=int(res.get("nit", 0) or 0))
 
 
-def _contact_axisymmetric(ctx: StageContext, cs: ModuleType, method: str) -> StageOutput:
+def _contact_axisymmetric(ctx: StageContext, method: str) -> StageOutput:
     """Axisymmetric indenter: force, contact radius and (MDR) stiffness at fractions of the scene's load."""
     import dataclasses
 
-    base = cs.params_from_scene(ctx.scene)
+    from ..models.contact.solve import params_from_scene, solve
+
+    base = params_from_scene(ctx.scene)
     if base.normal_force is None:
         raise ValueError("[load].normal_force must be > 0 for a stiffness-vs-load curve of an axisymmetric contact")
     loads = base.normal_force * np.geomspace(0.01, 1.0, 9)
-    rows = [cs.solve(dataclasses.replace(base, normal_force=float(F)), method=method) for F in loads]
+    rows = [solve(dataclasses.replace(base, normal_force=float(F)), method=method) for F in loads]
     arrays = {"force": np.array([r.force for r in rows]), "contact_radius": np.array([r.contact_radius for r in rows]),
               "indentation": np.array([r.indentation for r in rows])}
     if all("stiffness" in r for r in rows):
@@ -410,7 +375,8 @@ def tangential_stiffness_from_contact(result: CachedStage, scene: Scene) -> tupl
 @_stage("macroscale")
 def macroscale(ctx: StageContext) -> StageOutput:
     """Stick-slip of the rigid body pulled through a spring, on the contact, with the chain's mu."""
-    macro = require_model("tribolmp.models.macro", "stick_slip_from_scene")
+    from ..models import macro
+
     mu, mu_src = _friction_coefficient(ctx)
     kw: dict[str, Any] = {"mu": mu}
     if ctx.plan.options.get("contact_law") == "stiffness" and "contact" in ctx.upstream:
@@ -490,7 +456,8 @@ def film_rupture_gap(scene: Scene) -> tuple[float, str]:
 @_stage("tribospectroscopy")
 def tribospectroscopy(ctx: StageContext) -> StageOutput:
     """F^2(a) of the oscillating two-contact probe with the chain's mu, and the fitted length."""
-    ts = require_model("tribolmp.models.tribospectroscopy", "params_from_scene", "solve", "fit_length", "MeasuredCurve")
+    from ..models import tribospectroscopy as ts
+
     mu, mu_src = _friction_coefficient(ctx)
     params = ts.params_from_scene(ctx.scene, mu=mu)
     res = ts.solve(params)

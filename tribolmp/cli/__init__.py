@@ -17,13 +17,13 @@ from __future__ import annotations
 import argparse
 import importlib
 import importlib.util
-import json
 import math
 import sys
 from collections.abc import Sequence
 from typing import Any, NoReturn
 
 from ..errors import EXIT_RUN, EXIT_SETUP, RunError, SetupError, TribolmpError
+from ..jsonio import dumps
 
 __all__ = ["main", "emit_json", "OneLineParser", "COMMANDS"]
 
@@ -105,38 +105,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 130
 
 
-def _default(o: Any) -> Any:
-    try:
-        import numpy as np
-    except ImportError:  # pragma: no cover
-        np = None
-    if np is not None:
-        if isinstance(o, np.ndarray):
-            return o.tolist()
-        if isinstance(o, (np.floating, np.integer, np.bool_)):
-            return o.item()
-    if hasattr(o, "__fspath__"):
-        return str(o)
-    if hasattr(o, "to_json_dict"):
-        return o.to_json_dict()
-    raise TypeError(f"not JSON serialisable: {type(o).__name__}")
-
-
-def _clean(o: Any) -> Any:
-    # JSON has no NaN/inf: emit null so that strict parsers accept the output.
-    if isinstance(o, float) and not math.isfinite(o):
-        return None
-    if isinstance(o, dict):
-        return {k: _clean(v) for k, v in o.items()}
-    if isinstance(o, (list, tuple)):
-        return [_clean(v) for v in o]
-    return o
-
-
 def emit_json(obj: Any, stream=None) -> None:
     """Print ``obj`` as strict JSON (numpy types converted, NaN/inf as null)."""
-    text = json.dumps(_clean(json.loads(json.dumps(obj, default=_default, allow_nan=True))), allow_nan=False)
-    print(text, file=stream or sys.stdout)
+    print(dumps(obj), file=stream or sys.stdout)
 
 
 def float_list(text: str) -> list[float]:

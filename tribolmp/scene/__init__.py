@@ -22,7 +22,7 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 from ..errors import ParameterError, SceneError
-from .fields import build_dataclass
+from ..params import build_dataclass
 from .schema import (
     SECTIONS,
     Contact,
@@ -91,17 +91,16 @@ class Scene:
         a, b = self.material, self.counter
         return 1.0 / ((2 - a.poisson_ratio) / (4 * a.shear_modulus) + (2 - b.poisson_ratio) / (4 * b.shear_modulus))
 
-    def has(self, section: str) -> bool:
-        """True when the scene file gave ``section`` (or it is always present)."""
-        return getattr(self, section) is not None
-
     def to_dict(self) -> dict[str, Any]:
         """Plain dict of all present sections (for hashing and reports)."""
         out: dict[str, Any] = {}
         for name in SECTIONS:
             sec = getattr(self, name)
             if sec is not None:
-                out[name] = {k: (list(v) if isinstance(v, tuple) else v) for k, v in dataclasses.asdict(sec).items()}
+                # None means "not given" (optional [rates] fields): left out, so the dict stays TOML.
+                out[name] = {
+                    k: (list(v) if isinstance(v, tuple) else v) for k, v in dataclasses.asdict(sec).items() if v is not None
+                }
         return out
 
 

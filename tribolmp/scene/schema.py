@@ -10,10 +10,14 @@ scene files in the wild use them.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+import dataclasses
+import typing
+from dataclasses import dataclass
 
 from ..errors import ParameterError
-from .fields import param, validate_dataclass
+from ..params import param, validate_dataclass
+from ..records import RATES_GROUPS
+from ..records import Rates as RatesRecord
 
 __all__ = [
     "Section",
@@ -248,18 +252,54 @@ class Tribospectroscopy(Section):
     correlation_length: float = param(50e-9, unit="m", lo=0.0, lo_open=True, hi=1e-3, doc="Pinning correlation length lambda.")
 
 
-@dataclass(frozen=True)
-class Rates(Section):
-    """``[rates]``: nanoscale rates given directly (skips LAMMPS)."""
+#: Defaults of the ``[rates]`` keys that scene files have always had (the record itself defaults to
+#: None = "not given"); a scene that gives only some of them keeps running as before.
+RATES_SCENE_DEFAULTS = {
+    "mu": 0.3,
+    "diffusion_m2_s": 1e-12,
+    "transfer_rate": 1e-3,
+    "wear_rate": 1e-3,
+    "layer_depth_m": 6.5e-9,
+    "step_length_m": 2.5e-9,
+    "step_time_s": 1e-9,
+}
 
-    _name = "rates"
-    mu: float = param(0.3, lo=0.0, hi=10.0, doc="Friction coefficient.")
-    diffusion_m2_s: float = param(1e-12, unit="m^2/s", lo=0.0, hi=1e3, doc="Lateral diffusion coefficient D.")
-    transfer_rate: float = param(1e-3, unit="1/m", lo=0.0, hi=1e12, doc="Transferred mass fraction per sliding distance.")
-    wear_rate: float = param(1e-3, unit="1/s", lo=0.0, hi=1e12, doc="Wear rate constant (mu of Eq. 23).")
-    layer_depth_m: float = param(6.5e-9, unit="m", lo=0.0, hi=1e-3, doc="Quasi-liquid layer depth.")
-    step_length_m: float = param(2.5e-9, unit="m", lo=0.0, lo_open=True, hi=1e-3, doc="Elementary step length l.")
-    step_time_s: float = param(1e-9, unit="s", lo=0.0, lo_open=True, hi=1e6, doc="Elementary step time tau.")
+
+def _rates_section() -> type[Section]:
+    """``[rates]``: the fields of :class:`tribolmp.records.Rates`, except its provenance group.
+
+    Declared from the record so that the scene, the analysis, the chain and the
+    topography model share one definition (name, unit, range, doc) of every rate.
+    """
+    provenance = set(RATES_GROUPS["provenance"])
+    hints = typing.get_type_hints(RatesRecord)
+    specs = []
+    for f in dataclasses.fields(RatesRecord):
+        if f.name in provenance:
+            continue
+        default = RATES_SCENE_DEFAULTS.get(f.name, f.default)
+        specs.append((f.name, hints[f.name], dataclasses.field(default=default, metadata=f.metadata)))
+
+    def to_record(self, source: str = "[rates]") -> RatesRecord:
+        """The shared :class:`~tribolmp.records.Rates` record of this section."""
+        return RatesRecord(**{name: getattr(self, name) for name, _t, _f in specs}, source=source)
+
+    return dataclasses.make_dataclass(
+        "Rates",
+        specs,
+        bases=(Section,),
+        frozen=True,
+        namespace={
+            "_name": "rates",
+            "__doc__": "``[rates]``: nanoscale rates given directly (skips LAMMPS); fields of "
+            ":class:`tribolmp.records.Rates`.",
+            "__module__": __name__,
+            "to_record": to_record,
+        },
+    )
+
+
+Rates = _rates_section()
 
 
 OUTPUT_CHOICES = (
@@ -307,12 +347,3 @@ SECTIONS: dict[str, type[Section]] = {
     "outputs": Outputs,
 }
 
-
-def section_names() -> list[str]:
-    """Names of all known TOML sections."""
-    return list(SECTIONS)
-
-
-def field_names(section: str) -> list[str]:
-    """Names of the keys allowed in ``section``."""
-    return [f.name for f in fields(SECTIONS[section])]

@@ -33,6 +33,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ...errors import ParameterError
+from ...records import Rates
 from .spde import TopographyParams
 
 __all__ = ["params_from_rates", "params_from_scene"]
@@ -65,8 +66,8 @@ def params_from_rates(
 
     Parameters
     ----------
-    rates : mapping
-        ``rates.json`` content: ``step_length_m`` (m) and ``step_time_s`` (s)
+    rates : Rates or mapping
+        The shared :class:`~tribolmp.records.Rates` record or ``rates.json`` content: ``step_length_m`` (m) and ``step_time_s`` (s)
         are required; ``diffusion_m2_s`` (m^2/s), ``wear_rate``,
         ``detachment_rate``, ``reattachment_rate`` (1/s) and
         ``transfer_rate`` (1/m) are used when present.  Other keys are ignored.
@@ -90,6 +91,9 @@ def params_from_rates(
     -------
     TopographyParams
     """
+    if isinstance(rates, Rates):
+        # The shared record (tribolmp.records.Rates): its given fields, under the same names.
+        rates = {k: v for k, v in rates.to_dict(with_units=False).items() if v is not None}
     if not isinstance(rates, Mapping):
         raise ParameterError("rates", "a mapping (rates.json content)", type(rates).__name__)
     if dim not in (1, 2):
@@ -138,9 +142,7 @@ def params_from_scene(scene, rates: Mapping[str, Any] | None = None) -> Topograp
 
     topo = scene.topography or Topography()
     if rates is None and scene.rates is not None:
-        r = scene.rates
-        rates = dict(diffusion_m2_s=r.diffusion_m2_s, transfer_rate=r.transfer_rate, wear_rate=r.wear_rate,
-                     step_length_m=r.step_length_m, step_time_s=r.step_time_s)
+        rates = scene.rates.to_record()
     if rates is not None:
         return params_from_rates(
             rates, dim=topo.dim, n=topo.grid_points, dx=topo.pixel_size, duration=topo.duration,
