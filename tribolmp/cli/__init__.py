@@ -39,6 +39,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "tribospec": ("tribolmp.cli.tribospec", "tribospectroscopy: simulate and fit F(amplitude)"),
     "macro": ("tribolmp.cli.macro", "rigid body on contact springs: stick-slip and oscillation"),
     "mca": ("tribolmp.cli.mca", "movable cellular automata friction on LAMMPS"),
+    "analysis": ("tribolmp.cli.analysis", "measurements on MCA outputs (Eq. 23 fit of a surface profile)"),
 }
 
 
