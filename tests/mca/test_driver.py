@@ -12,7 +12,7 @@ import pytest
 
 from tribolmp.errors import BlowUpError, LammpsError, ParameterError
 from tribolmp.lammps.decks import deck_path
-from tribolmp.lammps.mca import _classify, preset_params, restart_files, run_mca
+from tribolmp.lammps.mca import classify, preset_params, restart_files, run_mca
 
 pytestmark = pytest.mark.lammps
 
@@ -21,9 +21,9 @@ DUMP_HEADER = "ITEM: ATOMS id mol type x y z vx vy vz radius c_nbond"
 
 def _no_rates(monkeypatch):
     # the analysis package is tested by its owner; these tests check the simulation side only
-    from tribolmp.lammps import mca
+    from tribolmp.lammps.mca import driver
 
-    monkeypatch.setattr(mca, "_rates", lambda out: None)
+    monkeypatch.setattr(driver, "compute_rates_if_available", lambda out: None)
 
 
 def _friction(out: Path) -> np.ndarray:
@@ -33,14 +33,14 @@ def _friction(out: Path) -> np.ndarray:
 @pytest.fixture(scope="module")
 def smoke_run(tmp_path_factory, lammps_available):
     out = tmp_path_factory.mktemp("smoke")
-    from tribolmp.lammps import mca
+    from tribolmp.lammps.mca import driver
 
-    keep = mca._rates
-    mca._rates = lambda out: None
+    keep = driver.compute_rates_if_available
+    driver.compute_rates_if_available = lambda out: None
     try:
         res = run_mca(preset_params("smoke"), out, seed=11)
     finally:
-        mca._rates = keep
+        driver.compute_rates_if_available = keep
     return out, res
 
 
@@ -212,12 +212,12 @@ def test_blowups_name_step_and_cause_and_keep_restart(
 
 
 def test_nan_messages_are_classified():
-    err = _classify(LammpsError("Non-numeric atom coords - simulation unstable", None, 1234), 1234)
+    err = classify(LammpsError("Non-numeric atom coords - simulation unstable", None, 1234), 1234)
     assert isinstance(err, BlowUpError) and "step 1234" in str(err) and "NaN" in str(err)
     setup = LammpsError(
         "Expected floating point parameter instead of 'nan' in input script", None, 0
     )
-    assert _classify(setup, 0) is setup
+    assert classify(setup, 0) is setup
 
 
 def test_unknown_override_rejected(tmp_path):

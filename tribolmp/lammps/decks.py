@@ -14,7 +14,7 @@ from pathlib import Path
 
 from ..errors import MissingFeatureError
 
-__all__ = ["deck_path", "decks_dir", "list_decks"]
+__all__ = ["deck_path", "decks_dir", "laws_dir", "list_decks"]
 
 _PKG = Path(__file__).resolve().parents[1]
 
@@ -47,3 +47,8 @@ def deck_path(name: str) -> Path:
 def list_decks() -> list[str]:
     """Names of the installed decks (without ``.in``)."""
     return sorted(p.stem for p in decks_dir().glob("*.in"))
+
+
+def laws_dir() -> Path:
+    """Folder of the bond-law deck fragments ``laws/<keyword>.in`` (see :mod:`tribolmp.lammps.laws`)."""
+    return decks_dir() / "laws"

@@ -50,7 +50,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..models.base import check_choice, check_range
-from ..units import to_lammps
+from ..units import from_lammps, to_lammps
 
 __all__ = [
     "link_deck_variables",
@@ -67,7 +67,6 @@ __all__ = [
 
 MIN_DIAMETER = 0.5e-9
 MAX_DIAMETER = 50e-9
-BOND_STYLES = ("bpm/spring/plastic", "bpm/rotational")
 
 
 @dataclass(frozen=True)
@@ -135,24 +134,11 @@ class MaterialSpec:
         check_range("density", self.density, 0.0, 1e5, lo_open=True, unit="kg/m^3")
         if self.dim not in (2, 3):
             raise ParameterError("dim", "2 or 3", self.dim)
-        check_choice("bond_style", self.bond_style, BOND_STYLES)
-        flow = 0.5 * (self.yield_strength + self.ultimate_strength) / self.youngs_modulus
-        check_range(
-            "failure_strain",
-            self.failure_strain,
-            3.0 * flow,
-            0.5,
-            lo_open=True,
-            unit=f"(> 3x the flow strain {flow:.3g})",
-        )
         check_range("damping_ratio", self.damping_ratio, 0.0, 1.0)
         check_range("contact_friction", self.contact_friction, 0.0, 10.0)
-        if self.bond_style == "bpm/rotational" and self.poisson_ratio >= 1.0 / 3.0:
-            raise ParameterError(
-                "poisson_ratio",
-                "a number in (-1, 1/3) for bpm/rotational lattices",
-                self.poisson_ratio,
-            )
+        from .laws import get_law  # the law's own limits (registry: tribolmp.lammps.laws)
+
+        get_law(self.bond_style).validate(self)
 
 
 @dataclass(frozen=True)
@@ -388,21 +374,16 @@ def map_material(spec: MaterialSpec) -> BondCoefficients:
 
 
 
-#: deck variable -> BondCoefficients attribute, for the link coefficients both decks read.
-_LINK_VARIABLES = (
-    ("kn", "k_n"), ("ecrit", "eps_crit"), ("gn", "gamma_n"), ("ep", "eps_plastic"),
-    ("ks", "k_s"), ("kb", "k_b"), ("kt", "k_t"), ("fcr", "f_crit"), ("fscr", "fs_crit"),
-    ("tbcr", "tb_crit"), ("ttcr", "tt_crit"), ("gs", "gamma_s"), ("gr", "gamma_r"), ("gt", "gamma_t"),
-)
-
-
-def link_deck_variables(c: BondCoefficients) -> dict[str, str]:
-    """Deck variables (``-var name value``) of the link coefficients, in LAMMPS nano units.
+def link_deck_variables(c: BondCoefficients, bond_style: str = "bpm/spring/plastic") -> dict[str, str]:
+    """Deck variables of the link coefficients (LAMMPS nano units), from the law registry.
 
     Both decks (``mca_friction.in`` and ``mca_tension.in``) read the same
-    names, so they are rendered in one place.
+    names; the law's entry in :data:`tribolmp.lammps.laws.BOND_LAWS` renders them.
     """
-    return {name: f"{getattr(c, attr):.10g}" for name, attr in _LINK_VARIABLES}
+    from .laws import get_law
+
+    return dict(get_law(bond_style).deck_variables(c))
+
 
 def _ks_ratio_for_nu(nu: float, dim: int) -> float:
     """k_s / k_n giving Poisson's ratio ``nu`` along x (monotone in the ratio)."""
@@ -493,7 +474,8 @@ def measure_uniaxial(
 
     from ..models.base import Result, timed
     from .build import build_block, write_bpm_data
-    from .decks import deck_path
+    from .decks import deck_path, laws_dir
+    from .laws import get_law
     from .session import LammpsSession
 
     check_choice("mode", mode, ("tension", "compression"))
@@ -516,7 +498,7 @@ def measure_uniaxial(
     dt = 0.1 * c.dt_unit
     # elastic part (to 2x the flow strain) 10x slower, so the lateral barostat keeps up
     sign = 1.0 if mode == "tension" else -1.0
-    erate = sign * strain_rate * 1e-9  # 1/s -> 1/ns
+    erate = sign * strain_rate * from_lammps(1.0, "time")  # 1/s -> 1/(LAMMPS time unit)
     slow = min(2.0 * flow_strain, strain)
     steps_slow = int(math.ceil(slow / (0.1 * abs(erate) * dt)))
     steps = max(1, int(math.ceil((strain - slow) / (abs(erate) * dt))))
@@ -525,14 +507,15 @@ def measure_uniaxial(
         "data": data,
         "out": out,
         "dim": spec.dim,
-        "bond": "rotational" if spec.bond_style == "bpm/rotational" else "plastic",
+        "bond": get_law(spec.bond_style).keyword,
+        "lawdir": laws_dir(),
         "dt": f"{dt:.10g}",
         "erate": f"{erate:.10g}",
         "steps": steps,
         "print_every": every,
         "erate_slow": f"{0.1 * erate:.10g}",
         "steps_slow": steps_slow,
-        **link_deck_variables(c),
+        **link_deck_variables(c, spec.bond_style),
         "comm_cut": f"{2.2 * d:.10g}",
         "modulus": f"{to_lammps(spec.youngs_modulus, 'pressure'):.10g}",
     }
@@ -554,7 +537,7 @@ def measure_uniaxial(
     _, vol = lattice_vectors(spec.dim)
     v_mat = geom.n_atoms * vol * d**3
     eps = np.abs(table[:, 0])
-    sigma = np.abs(table[:, 1]) / v_mat * 1e6  # LAMMPS pressure unit = 1e6 Pa
+    sigma = from_lammps(np.abs(table[:, 1]) / v_mat, "pressure")  # Pa
     lateral = table[:, 2]
     elastic = (eps > 0) & (eps <= 0.5 * flow_strain)
     e_fit = float(np.polyfit(eps[elastic], sigma[elastic], 1)[0])

@@ -1,0 +1,178 @@
+"""The registry of MCA interaction (bond) laws: one entry per law, plus its deck fragment.
+
+A law is everything that differs between link models in the MCA decks: the
+LAMMPS styles it needs, how the material (SI) maps onto its coefficients, the
+deck variables that carry them, its validity limits, and the deck fragment
+``lammps_inputs/laws/<keyword>.in`` that issues its LAMMPS commands.  Both
+decks (``mca_friction.in`` and ``mca_tension.in``) ``include`` the fragment;
+everything else in them is law-independent.  Adding a law is therefore one
+:class:`BondLaw` entry in :data:`BOND_LAWS` and one fragment file (contract C4
+in CONTRACTS.md).
+
+Fragment contract (what the decks provide and expect)
+-----------------------------------------------------
+Provided by the decks before ``include``: the box and atoms (``read_data`` or
+``read_restart``), ``${resume}`` (1 after ``read_restart``), ``${mca_context}``
+(``friction`` or ``tension``), ``${dim}``, ``${comm_cut}``, ``${smooth}``
+(one smoothing setting for both decks), groups ``mobile`` (deformable
+automata, friction) and ``all``, and every variable the law's
+``deck_variables`` returned.
+Expected from the fragment, in context ``friction``: the link style and
+coefficients for bond types 1 (original), 2 (re-formed), 3 (unbreakable
+attachment) when ``${resume} == 0`` (a restart file carries them), the
+contact interaction between unlinked automata (always: pair styles without
+history are not in restart files), any re-linking/welding fix, and a per-atom
+compute with ID ``nbond`` (links per automaton, dumped as ``c_nbond``).  In
+context ``tension``: the link style for every bond type and no contact forces.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+from ..errors import ParameterError
+
+__all__ = ["BOND_LAWS", "DEFAULT_LAW", "BondLaw", "get_law", "law_names"]
+
+
+def _rot_nu_limit(spec) -> None:
+    if spec.poisson_ratio >= 1.0 / 3.0:
+        raise ParameterError(
+            "poisson_ratio", "a number in (-1, 1/3) for bpm/rotational lattices", spec.poisson_ratio
+        )
+
+
+def _failure_strain_limit(spec) -> None:
+    flow = 0.5 * (spec.yield_strength + spec.ultimate_strength) / spec.youngs_modulus
+    # the rupture strain must clear the flow strain well, else links break before they yield
+    if not (3.0 * flow < spec.failure_strain <= 0.5):
+        raise ParameterError(
+            "failure_strain",
+            f"a number in ({3.0 * flow:.3g}, 0.5] (> 3x the flow strain {flow:.3g})",
+            spec.failure_strain,
+        )
+
+
+def _bpm_plastic_validate(spec) -> None:
+    _failure_strain_limit(spec)
+
+
+def _bpm_rotational_validate(spec) -> None:
+    _failure_strain_limit(spec)
+    _rot_nu_limit(spec)
+
+
+def _bpm_map(spec):
+    from .mapping import map_material
+
+    return map_material(spec)
+
+
+#: deck variable -> BondCoefficients attribute, per bpm law (LAMMPS nano units)
+_PLASTIC_VARIABLES = (("kn", "k_n"), ("ecrit", "eps_crit"), ("gn", "gamma_n"), ("ep", "eps_plastic"))
+_ROTATIONAL_VARIABLES = (
+    ("kn", "k_n"), ("ks", "k_s"), ("kb", "k_b"), ("kt", "k_t"), ("fcr", "f_crit"),
+    ("fscr", "fs_crit"), ("tbcr", "tb_crit"), ("ttcr", "tt_crit"), ("gn", "gamma_n"),
+    ("gs", "gamma_s"), ("gr", "gamma_r"), ("gt", "gamma_t"),
+)
+
+
+def _render(table):
+    def variables(coeff) -> dict[str, str]:
+        return {name: f"{getattr(coeff, attr):.10g}" for name, attr in table}
+
+    return variables
+
+
+@dataclass(frozen=True)
+class BondLaw:
+    """One interaction law of the MCA decks.
+
+    Attributes
+    ----------
+    name : str
+        The value of ``MCAParams.bond_style`` / ``MaterialSpec.bond_style``
+        / ``[nanoscale].bond_style`` (e.g. ``"bpm/spring/plastic"``).
+    keyword : str
+        Deck keyword: ``-var bond KEYWORD`` selects the fragment
+        ``lammps_inputs/laws/KEYWORD.in``.
+    styles : tuple of (category, style)
+        LAMMPS styles the fragment uses (checked before a run starts).
+    map_material : callable
+        ``map_material(spec: MaterialSpec) -> coefficients``; the result
+        carries at least the attributes the driver reads: ``mass``,
+        ``contact_diameter``, ``density_column``, ``dt_unit``,
+        ``dt_max_factor``, ``flow_stress`` (Pa); LAMMPS ``units nano``.
+    deck_variables : callable
+        ``deck_variables(coeff) -> {name: str}``: the law's coefficient
+        variables (LAMMPS ``units nano``), declared with defaults by the
+        fragment.
+    validate : callable
+        ``validate(spec) -> None``; raises ``ParameterError`` (one line,
+        field and expected range) for materials the law cannot represent.
+    setup : callable, optional
+        ``setup() -> {name: str}``, run before LAMMPS starts (e.g. build and
+        locate a plugin); extra deck variables, e.g. the plugin path.
+    coordination_cap : bool
+        True when the law's links are LAMMPS bonds created by ``fix
+        bond/create`` (the decks then need bond slots per atom).
+    doc : str
+        One line for ``--help`` and the docs.
+    """
+
+    name: str
+    keyword: str
+    styles: tuple[tuple[str, str], ...]
+    map_material: Callable[[Any], Any]
+    deck_variables: Callable[..., Mapping[str, str]]
+    validate: Callable[[Any], None]
+    setup: Callable[[], Mapping[str, str]] | None = None
+    coordination_cap: bool = True
+    doc: str = field(default="")
+
+
+_COMMON_STYLES = (("atom", "bpm/sphere"), ("fix", "nve/bpm/sphere"))
+
+BOND_LAWS: Mapping[str, BondLaw] = MappingProxyType(
+    {
+        "bpm/spring/plastic": BondLaw(
+            name="bpm/spring/plastic",
+            keyword="plastic",
+            styles=_COMMON_STYLES
+            + (("bond", "bpm/spring/plastic"), ("pair", "granular"), ("fix", "bond/create")),
+            map_material=_bpm_map,
+            deck_variables=_render(_PLASTIC_VARIABLES),
+            validate=_bpm_plastic_validate,
+            doc="central elastic-perfectly plastic springs (LAMMPS BPM), nu fixed at 1/3",
+        ),
+        "bpm/rotational": BondLaw(
+            name="bpm/rotational",
+            keyword="rotational",
+            styles=_COMMON_STYLES
+            + (("bond", "bpm/rotational"), ("pair", "granular"), ("fix", "bond/create")),
+            map_material=_bpm_map,
+            deck_variables=_render(_ROTATIONAL_VARIABLES),
+            validate=_bpm_rotational_validate,
+            doc="normal/shear/bending springs (LAMMPS BPM), brittle, nu < 1/3",
+        ),
+    }
+)
+
+#: The law used when none is named (``mca`` once it passes its tests).
+DEFAULT_LAW = "bpm/spring/plastic"
+
+
+def law_names() -> tuple[str, ...]:
+    """Names of the registered laws, registry order."""
+    return tuple(BOND_LAWS)
+
+
+def get_law(name: str) -> BondLaw:
+    """The registered law ``name``; one-line ``ParameterError`` otherwise."""
+    try:
+        return BOND_LAWS[name]
+    except KeyError:
+        raise ParameterError("bond_style", f"one of {list(BOND_LAWS)}", name) from None

@@ -1,0 +1,223 @@
+"""Restart files, resume and repair of an MCA output folder.
+
+What makes a resume exact (one rank) and idempotent under any sequence of
+interrupts:
+
+* The driver runs the deck in chunks that end on restart steps (whole
+  ``friction.csv`` averaging windows).  Every ``run`` command re-sorts the
+  atoms and rebuilds the neighbour lists at its start, so a resumed run, which
+  starts with a ``run`` at a restart step, passes through the same states as
+  the uninterrupted run, which starts a ``run`` at the same step.
+* Restart files are written by :func:`write_restart` to a temporary name and
+  renamed: a file named ``restart.<step>.bin`` is complete.  ``meta.json`` and
+  the rewritten outputs are written the same way (:func:`atomic_write_text`).
+* On resume the outputs are cut back to the restart step (:func:`truncate_outputs`):
+  ``friction.csv`` keeps its title and the numeric rows up to that step; lines
+  that are not numbers (the ``#`` header ``fix print`` writes whenever it
+  re-opens a file, a row cut by a kill) are dropped; ``traj.lammpstrj`` keeps
+  complete frames up to that step.  :func:`finalize_outputs` removes the rows
+  and frames a ``run`` command writes twice (its first step) or off the dump
+  interval (the first frame of a re-opened dump).
+* A folder that cannot be resumed (no or foreign ``meta.json``, no data file,
+  no readable restart) is discarded and recomputed (:func:`discard_run_files`).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import tempfile
+from pathlib import Path
+from typing import Any
+
+__all__ = [
+    "RUN_FILES",
+    "atomic_write_json",
+    "atomic_write_text",
+    "discard_run_files",
+    "finalize_outputs",
+    "prune_restarts",
+    "restart_files",
+    "resumable_meta",
+    "truncate_outputs",
+    "write_restart",
+]
+
+_RESTART = re.compile(r"^restart\.(\d+)\.bin$")
+#: Files the driver writes into an output folder (removed when a folder is discarded).
+RUN_FILES = (
+    "meta.json",
+    "system.data",
+    "friction.csv",
+    "traj.lammpstrj",
+    "run.log",
+    "counters.json",
+    "rates.json",
+    "profile.npz",
+)
+CSV_TITLE = "time_s,friction_N,normal_N,top_x_m"
+
+
+def atomic_write_text(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` through a temporary file and a rename (never half-written)."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w") as fh:
+            fh.write(text)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(tmp, 0o644)  # mkstemp makes 0600; results are for colleagues too
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def atomic_write_json(path: Path, data: Any) -> None:
+    """:func:`atomic_write_text` of ``json.dumps(data, indent=1)``."""
+    atomic_write_text(path, json.dumps(data, indent=1))
+
+
+def restart_files(out: Path) -> list[tuple[int, Path]]:
+    """Complete restart files in ``out`` as (step, path), oldest first."""
+    found = []
+    for p in Path(out).glob("restart.*.bin"):
+        m = _RESTART.match(p.name)
+        if m and p.stat().st_size > 0:
+            found.append((int(m.group(1)), p))
+    return sorted(found)
+
+
+def write_restart(lmp, out: Path, step: int, *, is_root: bool) -> Path:
+    """``write_restart`` to a temporary name, then rename to ``restart.<step>.bin`` (rank 0).
+
+    The rename is atomic, so a kill at any moment leaves either no file of
+    that step or a complete one.
+    """
+    tmp = Path(out) / f".restart.{step}.bin.tmp"
+    final = Path(out) / f"restart.{step}.bin"
+    lmp.command(f"write_restart {tmp}")
+    if is_root:
+        with open(tmp, "rb") as fh:
+            os.fsync(fh.fileno())
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, final)
+    return final
+
+
+def prune_restarts(out: Path, keep: int = 2) -> None:
+    """Keep the newest ``keep`` restart files; remove older ones and stale temporaries."""
+    for _step, p in restart_files(out)[:-keep]:
+        p.unlink(missing_ok=True)
+    for p in Path(out).glob(".restart.*.bin.tmp"):
+        p.unlink(missing_ok=True)
+
+
+def resumable_meta(out: Path, expected: dict[str, Any]) -> dict[str, Any] | None:
+    """``meta.json`` of ``out`` if it describes the same run as ``expected``, else None.
+
+    ``expected`` holds ``params`` (dict), ``seed`` and ``overrides`` (dict of
+    strings); a folder of another run, or a broken ``meta.json``, is not resumable.
+    """
+    try:
+        meta = json.loads((Path(out) / "meta.json").read_text())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(meta, dict) or not (Path(out) / "system.data").is_file():
+        return None
+    for key, value in expected.items():
+        if meta.get(key) != value:
+            return None
+    return meta
+
+
+def discard_run_files(out: Path) -> None:
+    """Remove everything a previous run left in ``out`` (only the files the driver writes)."""
+    out = Path(out)
+    for name in RUN_FILES:
+        (out / name).unlink(missing_ok=True)
+    for _step, p in restart_files(out):
+        p.unlink(missing_ok=True)
+    for pattern in ("restart.*.bin", ".restart.*.bin.tmp", ".*.tmp"):
+        for p in out.glob(pattern):
+            p.unlink(missing_ok=True)
+
+
+def _csv_rows(text: str) -> list[tuple[float, str]]:
+    """Numeric rows of friction.csv as (time, line); anything else (titles, cut lines) dropped."""
+    rows = []
+    for ln in text.splitlines():
+        parts = ln.split(",")
+        if len(parts) != 4:
+            continue
+        try:
+            t = float(parts[0])
+            [float(x) for x in parts[1:]]
+        except ValueError:
+            continue
+        rows.append((t, ln))
+    return rows
+
+
+def _frames(text: str) -> list[tuple[int, str]]:
+    """Complete dump frames as (step, text); a frame cut by a kill is dropped."""
+    frames = []
+    for chunk in text.split("ITEM: TIMESTEP\n")[1:]:
+        lines = chunk.split("\n")
+        try:
+            step = int(lines[0])
+            n = int(lines[lines.index("ITEM: NUMBER OF ATOMS") + 1])
+            start = next(i for i, ln in enumerate(lines) if ln.startswith("ITEM: ATOMS")) + 1
+        except (ValueError, StopIteration, IndexError):
+            continue
+        body = lines[start : start + n]
+        if len(body) != n or any(len(b.split()) != len(lines[start - 1].split()) - 2 for b in body):
+            continue
+        frames.append((step, "ITEM: TIMESTEP\n" + "\n".join(lines[: start + n]) + "\n"))
+    return frames
+
+
+def truncate_outputs(out: Path, step: int, dt_s: float) -> None:
+    """Cut ``friction.csv`` and ``traj.lammpstrj`` back to ``step`` (the resumed run writes the rest)."""
+    out = Path(out)
+    csv = out / "friction.csv"
+    if csv.exists():
+        t_max = step * dt_s * (1 + 1e-9)
+        rows = [ln for t, ln in _csv_rows(csv.read_text()) if t <= t_max]
+        atomic_write_text(csv, "\n".join([CSV_TITLE, *rows]) + "\n")
+    traj = out / "traj.lammpstrj"
+    if traj.exists():
+        kept = [fr for st, fr in _frames(traj.read_text()) if st <= step]
+        atomic_write_text(traj, "".join(kept))
+
+
+def finalize_outputs(out: Path, dump_every: int) -> None:
+    """Drop repeated rows/frames (keep the first) and frames off the dump interval.
+
+    LAMMPS's ``fix print`` and ``dump`` also write on the first step of every
+    ``run`` command, and a re-opened dump writes its first frame whatever the
+    step, so chunk ends and restart steps appear twice; the first copy is the
+    one of the uninterrupted run.
+    """
+    out = Path(out)
+    csv = out / "friction.csv"
+    if csv.exists():
+        seen: set[str] = set()
+        kept = []
+        for _t, ln in _csv_rows(csv.read_text()):
+            key = ln.split(",", 1)[0]
+            if key not in seen:
+                seen.add(key)
+                kept.append(ln)
+        atomic_write_text(csv, "\n".join([CSV_TITLE, *kept]) + "\n")
+    traj = out / "traj.lammpstrj"
+    if traj.exists():
+        seen_steps: set[int] = set()
+        frames = []
+        for st, fr in _frames(traj.read_text()):
+            if st % dump_every == 0 and st not in seen_steps:
+                seen_steps.add(st)
+                frames.append(fr)
+        atomic_write_text(traj, "".join(frames))
