@@ -101,8 +101,8 @@ def test_ascii_grid_is_esri_layout(tmp_path):
     path = save_ascii_grid(tmp_path / "g.asc", h, 1e-6)
     lines = path.read_text().splitlines()
     assert lines[0] == "ncols 3" and lines[1] == "nrows 2" and lines[4].startswith("cellsize 1e-06")
-    # ESRI grids list the northernmost (last) row first.
-    assert [float(v) for v in lines[6].split()] == [3.0, 4.0, 5.0]
+    # First data row is y = 0 (h[0]), as instruments export text grids and SurfaceTopography reads them.
+    assert [float(v) for v in lines[6].split()] == [0.0, 1.0, 2.0]
 
 
 def test_height_map_errors(tmp_path):

@@ -32,7 +32,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
     a.add_argument("--json", action="store_true", help="print JSON")
 
     r = sub.add_parser("rough", help="rough surface: stiffness, force and approach vs pressure", description="Rough-surface normal contact against nominal pressure (SI units).")
-    r.add_argument("--surface", required=True, help="height map .npy (2D array of heights in m)")
+    r.add_argument("--surface", required=True, help="height map: .npy (2D, m; pixel size from its sidecar JSON), .asc/.xyz, "
+                   "or any instrument file SurfaceTopography reads (x3p, sur, opd, datx, gwy, plu, nc, ...; units from the file)")
+    r.add_argument("--unit", default=None, help="length unit of a surface file that states none (m, mm, um, nm)")
+    r.add_argument("--detrend", default="none", choices=("none", "mean", "plane", "curvature"), help="detrend the surface first")
+    r.add_argument("--fill-missing", action="store_true", help="fill missing data points (harmonic interpolation) instead of refusing the file")
     r.add_argument("--pixel-size", type=float, dest="pixel_size", help="grid spacing (m); default from the sidecar JSON 'pixel_size_m'")
     r.add_argument("--modulus", type=float, required=True, help="effective modulus E* (Pa)")
     r.add_argument("--pressures", type=float_list, required=True, help="nominal pressures p1,p2,... (Pa)")
@@ -92,7 +96,8 @@ def _rough(args) -> int:
     check_positive("modulus", args.modulus, "Pa")
     if args.pixel_size is not None:
         check_positive("pixel_size", args.pixel_size, "m")
-    h, dx = load_surface(args.surface, args.pixel_size)
+    h, dx = load_surface(args.surface, args.pixel_size, unit=args.unit, detrend=args.detrend,
+                         missing="fill" if args.fill_missing else "refuse")
     if dx is None:
         raise ParameterError("--pixel-size", "a grid spacing in m (no sidecar JSON with pixel_size_m found)", None)
     res = solve_rough(

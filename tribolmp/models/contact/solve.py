@@ -288,31 +288,35 @@ def solve(params: AxisymmetricParams, *, method: str = "mdr", rng=None) -> Resul
 # ------------------------------------------------------------------- rough
 
 
-def load_surface(path: str | Path, pixel_size: float | None = None) -> tuple[np.ndarray, float | None]:
-    """Read a height map (m) from ``.npy``; the pixel size comes from the argument or a sidecar JSON.
+def load_surface(
+    path: str | Path,
+    pixel_size: float | None = None,
+    *,
+    unit: str | None = None,
+    detrend: str = "none",
+    missing: str = "refuse",
+) -> tuple[np.ndarray, float | None]:
+    """Read a height map (m): tribolmp ``.npy`` (+ sidecar JSON), ``.asc``/``.xyz``, or any instrument file.
 
-    The sidecar ``<file>.json`` (key ``pixel_size_m``) is the format written
-    by the topography model.  Raises :class:`SurfaceFileError` (one line)
-    for unreadable files and :class:`ParameterError` for bad arrays.
+    Instrument files (x3p, sur, opd, datx, gwy, MetroPro, plu, nc, ...) go
+    through SurfaceTopography (:func:`tribolmp.models.topography.measured.read_surface`):
+    units and pixel size come from the file's metadata; ``pixel_size`` and
+    ``unit`` override them only when given.  A bare ``.npy`` without sidecar
+    returns ``pixel_size=None`` so that the caller supplies it.  Raises
+    :class:`SurfaceFileError` (one line) for unreadable files and
+    :class:`ParameterError` for bad arrays.
     """
+    from ..topography.measured import read_surface
     from .rough import check_heightmap
 
     path = Path(path)
-    try:
-        h = np.load(path, allow_pickle=False)
-    except (OSError, ValueError) as exc:
-        raise SurfaceFileError(f"surface: expected a readable .npy height map, got {path} ({' '.join(str(exc).split())})") from None
-    if not isinstance(h, np.ndarray):
-        raise SurfaceFileError(f"surface: expected a single .npy array, got an archive in {path}")
-    h = check_heightmap(h)
-    if pixel_size is None:
-        side = path.with_suffix(".json")
-        if side.exists():
-            try:
-                pixel_size = float(json.loads(side.read_text())["pixel_size_m"])
-            except (ValueError, KeyError, TypeError):
-                raise SurfaceFileError(f"surface: expected 'pixel_size_m' in {side}") from None
-    return h, pixel_size
+    if path.suffix.lower() == ".npy" and pixel_size is None and not path.with_suffix(".json").exists():
+        from ..topography.io import read_native
+
+        h, _, _, _ = read_native(path, pixel_size=1.0)  # provisional spacing: the caller supplies the real one
+        return check_heightmap(h), None
+    surf = read_surface(path, pixel_size=pixel_size, unit=unit, detrend=detrend, missing=missing)
+    return check_heightmap(surf.h), surf.pixel_size
 
 
 @ROUGH_REG.register("mdr")

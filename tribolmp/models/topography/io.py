@@ -3,11 +3,24 @@
 * ``save_height_map(path, h, pixel_size)`` writes ``<stem>.npy`` (heights in m,
   float64, shape ``(n,)`` or ``(ny, nx)``) and ``<stem>.json`` with
   ``pixel_size_m``, ``shape``, ``units`` and ``periodic``.
-* ``save_ascii_grid`` writes an ESRI ASCII grid (``.asc``; 2D; header
-  ``ncols nrows xllcorner yllcorner cellsize``, cellsize and heights in m,
-  read by GIS tools and Gwyddion) or an ``x [y] z`` text table (``.xyz``/
-  ``.txt``; 1D or 2D, m), which every plotting tool reads.
-* ``load_height_map(path)`` reads any of them back as ``(h, pixel_size)``.
+* ``save_ascii_grid`` writes an ESRI-style ASCII grid (``.asc``; 2D; header
+  ``ncols nrows xllcorner yllcorner cellsize``, cellsize and heights in m) or
+  an ``x [y] z`` text table (``.xyz``/``.txt``; 1D or 2D, header
+  ``# x_m [y_m] z_m`` stating the unit), which every plotting tool reads.
+* ``load_height_map(path)`` reads any of them back as ``(h, pixel_size)``;
+  :func:`tribolmp.models.topography.measured.read_surface` reads these and
+  every instrument format SurfaceTopography knows.
+* ``save_height_map`` also writes ``<stem>.nc`` (NetCDF, through
+  SurfaceTopography's writer, read by SurfaceTopography and Gwyddion) when
+  SurfaceTopography is installed.
+
+Row order of ``.asc`` grids: the first data row is ``y = 0`` (``h[0]``), the
+convention of instrument text exports (Gwyddion, Wyko, SPIP) and of
+SurfaceTopography's reader; GIS grids list the northernmost row first, which
+read the map flipped in y (issue 16).
+
+Text files without a stated unit are not taken as metres: an ``x y z`` file
+in µm read as m is a 10^6 error.  Such files need an explicit ``unit``.
 """
 
 from __future__ import annotations
@@ -20,15 +33,15 @@ import numpy as np
 
 from ...errors import SurfaceFileError
 
-__all__ = ["save_height_map", "load_height_map", "save_ascii_grid"]
+__all__ = ["save_height_map", "load_height_map", "save_ascii_grid", "read_native"]
 
 
 def _check(h, pixel_size):
     h = np.asarray(h, dtype=float)
     if h.ndim not in (1, 2) or min(h.shape) < 2:
-        raise SurfaceFileError(f"height map: expected a 1D or 2D array with >= 2 points per side, got shape {h.shape}")
+        raise SurfaceFileError(f"surface height map: expected a 1D or 2D array with >= 2 points per side, got shape {h.shape}")
     if not np.all(np.isfinite(h)):
-        raise SurfaceFileError("height map: expected finite heights, got NaN or inf")
+        raise SurfaceFileError("surface height map: expected finite heights, got NaN or inf")
     if isinstance(pixel_size, bool) or not isinstance(pixel_size, (int, float)) or not (
         math.isfinite(pixel_size) and pixel_size > 0
     ):
@@ -61,14 +74,27 @@ def save_height_map(path, h, pixel_size: float) -> tuple[Path, Path]:
     meta = {"pixel_size_m": pixel_size, "shape": list(h.shape), "units": {"h": "m", "pixel_size_m": "m"},
             "periodic": True, "format": "tribolmp height map v1"}
     side.write_text(json.dumps(meta, indent=1))
+    _write_netcdf_copy(path.with_suffix(".nc"), h, pixel_size)
     return npy, side
+
+
+def _write_netcdf_copy(path: Path, h, pixel_size: float) -> Path | None:
+    """The same map as NetCDF for SurfaceTopography/Gwyddion users; skipped without SurfaceTopography."""
+    try:
+        import SurfaceTopography  # noqa: F401
+    except ImportError:
+        return None
+    from .measured import write_surface
+
+    return write_surface(path, h, pixel_size, periodic=True)
 
 
 def save_ascii_grid(path, h, pixel_size: float) -> Path:
     """Write an ASCII height map: ESRI grid for ``.asc`` (2D), ``x [y] z`` columns otherwise.
 
-    Rows of the ESRI grid are written top (last row of ``h``) to bottom, as
-    the format requires; coordinates are pixel centres in m.
+    Rows of the grid are written ``h[0]`` (``y = 0``) first, as instruments
+    write text exports and SurfaceTopography reads them; coordinates are pixel
+    centres in m.
     """
     h, pixel_size = _check(h, pixel_size)
     path = Path(path)
@@ -81,7 +107,7 @@ def save_ascii_grid(path, h, pixel_size: float) -> Path:
                   f"cellsize {pixel_size!r}\nNODATA_value -9999\n")
         with path.open("w") as fh:
             fh.write(header)
-            np.savetxt(fh, h[::-1], fmt="%.10e")
+            np.savetxt(fh, h, fmt="%.10e")
         return path
     x = (np.arange(h.shape[-1]) + 0.5) * pixel_size
     if h.ndim == 1:
@@ -96,8 +122,17 @@ def save_ascii_grid(path, h, pixel_size: float) -> Path:
     return path
 
 
-def load_height_map(path) -> tuple[np.ndarray, float]:
+def load_height_map(path, pixel_size: float | None = None, unit: str | None = None) -> tuple[np.ndarray, float]:
     """Read a height map written by :func:`save_height_map` or :func:`save_ascii_grid`.
+
+    Parameters
+    ----------
+    path : str or Path
+        ``.npy`` (+ ``.json``), ``.asc`` or ``.xyz``/``.txt``.
+    pixel_size : float, optional
+        Grid spacing (m); overrides the file's value when given.
+    unit : str, optional
+        Length unit of a text file without a ``_m`` header (``"um"``, ``"nm"``, ...).
 
     Returns
     -------
@@ -106,23 +141,60 @@ def load_height_map(path) -> tuple[np.ndarray, float]:
     pixel_size : float
         Grid spacing (m).
     """
+    h, px, _, _ = read_native(path, pixel_size=pixel_size, unit=unit)
+    return h, px
+
+
+def read_native(path, pixel_size: float | None = None, unit: str | None = None) -> tuple[np.ndarray, float, str, str]:
+    """Read a tribolmp-format height map; returns ``(h [m], pixel_size [m], format, unit_source)``.
+
+    ``unit_source`` says where the units and pixel size came from
+    (``"file metadata"``, ``"override"`` or both).
+    """
     path = Path(path)
     suffix = path.suffix.lower()
     try:
         if suffix in (".npy", ".json", ""):
             npy, side = path.with_suffix(".npy"), path.with_suffix(".json")
-            h = np.load(npy, allow_pickle=False)
-            meta = json.loads(side.read_text())
-            pixel = meta["pixel_size_m"]
+            try:
+                h = np.load(npy, allow_pickle=False)
+            except ValueError:
+                # numpy's "pickled data" text misleads for a file that is simply not .npy.
+                raise SurfaceFileError(f"surface file {npy}: expected a .npy array file (numpy format), got other content") from None
+            if not isinstance(h, np.ndarray):
+                raise SurfaceFileError(f"{npy}: expected a single .npy array, got an archive")
+            meta = json.loads(side.read_text()) if side.exists() else {}
+            fmt = "tribolmp-npy"
+            if pixel_size is not None:
+                pixel, source = pixel_size, "override" if "pixel_size_m" not in meta else "file metadata + pixel size (override)"
+            elif "pixel_size_m" in meta:
+                pixel, source = meta["pixel_size_m"], "file metadata"
+            else:
+                raise SurfaceFileError(f"{npy}: expected a sidecar {side.name} with pixel_size_m or a pixel_size override (m), got none")
+            if unit not in (None, "m"):
+                raise SurfaceFileError(f"{npy}: tribolmp .npy heights are in m; unit override expected 'm' or none, got {unit!r}")
         elif suffix == ".asc":
             h, pixel = _read_asc(path)
+            fmt, source = "esri-asc", "file metadata"
+            if unit not in (None, "m"):
+                from .measured import _unit_factor
+
+                f = _unit_factor(unit, "unit")
+                h, pixel, source = h * f, pixel * f, "override (unit)"
+            if pixel_size is not None:
+                pixel, source = pixel_size, source + " + pixel size (override)"
         else:
-            h, pixel = _read_xyz(path)
+            h, pixel, source = _read_xyz(path, unit)
+            fmt = "xyz"
+            if pixel_size is not None:
+                pixel, source = pixel_size, source + " + pixel size (override)"
     except SurfaceFileError:
         raise
-    except (OSError, ValueError, KeyError, json.JSONDecodeError) as exc:
-        raise SurfaceFileError(f"{path}: expected a tribolmp height map (.npy + .json, .asc or .xyz), got {exc}") from None
-    return _check(h, pixel)
+    except (OSError, ValueError, KeyError, IndexError, json.JSONDecodeError) as exc:
+        msg = " ".join(str(exc).split())
+        raise SurfaceFileError(f"{path}: expected a tribolmp height map (.npy + .json, .asc or .xyz), got {msg}") from None
+    h, pixel = _check(h, pixel)
+    return h, pixel, fmt, source
 
 
 def _read_asc(path: Path):
@@ -133,20 +205,88 @@ def _read_asc(path: Path):
         key, value = lines[i].split()[:2]
         header[key.lower()] = float(value)
         i += 1
-    data = np.loadtxt(lines[i:], ndmin=2)[::-1]
+    for key in ("ncols", "nrows", "cellsize"):
+        if key not in header:
+            raise SurfaceFileError(f"{path}: expected an ESRI grid header with {key}, got keys {sorted(header)}")
+    data = np.loadtxt(lines[i:], ndmin=2)
     if data.shape != (int(header["nrows"]), int(header["ncols"])):
         raise SurfaceFileError(f"{path}: expected {int(header['nrows'])}x{int(header['ncols'])} values, got {data.shape}")
+    if "nodata_value" in header:
+        bad = data == header["nodata_value"]
+        if bad.any():
+            raise SurfaceFileError(f"{path}: expected a complete grid, got {int(bad.sum())} NODATA points")
     return data, header["cellsize"]
 
 
-def _read_xyz(path: Path):
-    table = np.loadtxt(path, ndmin=2)
+def _header_unit(path: Path) -> str | None:
+    """The length unit stated by a ``# x_<unit> ...`` header line, or None."""
+    with path.open("r", errors="replace") as fh:
+        for line in fh:
+            s = line.strip()
+            if not s:
+                continue
+            if not s.startswith("#"):
+                return None
+            words = s.lstrip("#").split()
+            if words and words[0].lower().startswith("x_"):
+                return words[0][2:]
+    return None
+
+
+def _uniform_axis(values: np.ndarray, name: str, path: Path) -> tuple[np.ndarray, float]:
+    u = np.unique(values)
+    if u.size < 2:
+        return u, 0.0
+    d = np.diff(u)
+    step = float(np.median(d))
+    # 1e-6 relative: coordinates written with >= 7 significant digits.
+    if np.any(np.abs(d - step) > 1e-6 * max(step, np.abs(u).max() * 1e-9)):
+        raise SurfaceFileError(f"{path}: expected uniformly spaced {name} values, got spacings from {d.min():.4g} to {d.max():.4g}")
+    return u, step
+
+
+def _read_xyz(path: Path, unit: str | None):
+    from .measured import _unit_factor
+
+    stated = _header_unit(path)
+    if stated is not None:
+        fac, source = _unit_factor(stated, f"{path}: header unit"), "file metadata"
+        if unit is not None:
+            fac, source = _unit_factor(unit, "unit"), f"file metadata + unit {unit} (override of the file's {stated})"
+    elif unit is not None:
+        fac, source = _unit_factor(unit, "unit"), f"override (unit {unit})"
+    else:
+        table = np.loadtxt(path, ndmin=2, max_rows=2)
+        raise SurfaceFileError(
+            f"{path}: expected a header '# x_m ...' stating the length unit or a unit override (e.g. unit='um', --unit um), "
+            f"got a unit-less table of {table.shape[1]} columns"
+        )
+    table = np.loadtxt(path, ndmin=2) * fac
     if table.shape[1] == 2:
         x, z = table.T
-        return z, float(x[1] - x[0])
+        order = np.argsort(x, kind="stable")
+        x, z = x[order], z[order]
+        _, step = _uniform_axis(x, "x", path)
+        if step <= 0 or np.unique(x).size != x.size:
+            raise SurfaceFileError(f"{path}: expected distinct, uniformly spaced x values, got repeated x")
+        return z, step, source
     if table.shape[1] == 3:
         x, y, z = table.T
-        nx = int(np.count_nonzero(y == y[0]))
-        ny = len(z) // nx
-        return z.reshape(ny, nx), float(x[1] - x[0])
+        ux, dx = _uniform_axis(x, "x", path)
+        uy, dy = _uniform_axis(y, "y", path)
+        nx, ny = ux.size, uy.size
+        if nx < 2 or ny < 2:
+            raise SurfaceFileError(f"{path}: expected >= 2 distinct x and y values, got {nx} x and {ny} y")
+        if nx * ny != z.size:
+            raise SurfaceFileError(f"{path}: expected a complete {nx}x{ny} grid ({nx * ny} rows), got {z.size} rows")
+        if abs(dx - dy) > 1e-6 * max(dx, dy):
+            raise SurfaceFileError(f"{path}: expected square pixels, got dx = {dx:.6g} and dy = {dy:.6g} (file units x {fac:g} m)")
+        # Place every point by its coordinates: works whichever of x or y varies fastest, and any row order.
+        ix = np.rint((x - ux[0]) / dx).astype(int)
+        iy = np.rint((y - uy[0]) / dy).astype(int)
+        h = np.full((ny, nx), np.nan)
+        h[iy, ix] = z
+        if np.isnan(h).any():
+            raise SurfaceFileError(f"{path}: expected one z per (x, y) grid point, got repeated points")
+        return h, dx, source
     raise SurfaceFileError(f"{path}: expected 2 (x z) or 3 (x y z) columns, got {table.shape[1]}")
