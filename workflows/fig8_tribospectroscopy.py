@@ -46,10 +46,11 @@ def main(argv=None) -> int:
     csv_path = write_curve_csv(out / "fig8_measured.csv", probe_amp, np.sqrt(measured_sq))
 
     curve = read_curve_csv(csv_path, convention="probe")  # the figure's x axis is dl/2
-    fit = fit_length(curve, "auto", weighting="relative", rng=rng)
+    fit = fit_length(curve, "auto", noise="proportional", rng=rng)
     png = plot_fit(curve, fit, out / "fig8_tribospectroscopy.png",
                    title="Fig. 8 shape: steel, synthetic data, fit per contact (a = dl/4)")
-    summary = {k: fit[k] for k in ("length_m", "length_std_m", "length_interval_m", "model", "residual",
+    summary = {k: fit[k] for k in ("length_m", "length_std_m", "length_interval_m", "length_interval_95_m",
+                                   "noise_model", "coverage_tested", "model", "residual",
                                    "delta_aic", "amplitude_convention", "candidates")}
     i1 = int(np.argmin(np.abs(probe_amp - 0.1e-6)))
     summary["drop_to_0.1um"] = float(1 - model.force_sq_N2[i1] / model.force_sq_N2[0])

@@ -134,3 +134,27 @@ def test_cli_fit_json_and_bad_csvs(cli, capsys, tmp_path):
     assert_one_line_error(run_main(capsys, "tribospec", "fit", bad), "amplitude_m", code=2)
     assert_one_line_error(run_main(capsys, "tribospec", "fit", tmp_path / "nope.csv"), "nope.csv", code=2)
     assert_one_line_error(run_main(capsys, "tribospec", "fit", bad, "--model", "best"), "model", code=2)
+
+
+def test_noise_around_zero_is_accepted_and_fitted(cli, tmp_path, rng):
+    # stiffness data F(a) with additive noise: beyond L the measured force scatters below zero
+    a = np.linspace(0.0, 4e-7, 26)
+    f = M.shakedown_force(a, 1.5, 1.5 / 2e-7) + 0.05 * rng.standard_normal(a.size)
+    assert (f < 0).any()
+    path = tmp_path / "neg.csv"
+    path.write_text("amplitude_m,force_N\n" + "".join(f"{float(x)!r},{float(y)!r}\n" for x, y in zip(a, f)))
+    curve = read_curve_csv(path)  # the old reader refused this: force_N: expected a value >= 0
+    assert curve.value.min() < 0
+    res = cli("tribospec", "fit", path, "--json", "--no-plot", "--noise", "additive")
+    assert res.returncode == 0, res.stderr
+    out = res.json()
+    assert out["model"] == "stiffness" and out["noise_model"] == "additive" and out["coverage_tested"] is True
+    lo, hi = out["length_interval_m"]
+    lo95, hi95 = out["length_interval_95_m"]
+    assert lo95 <= lo <= out["length_m"] <= hi <= hi95
+    # F^2 column with noise around zero (a pinning curve's tail) is accepted too
+    y = _pot(A, b=0.0) + 0.03 * rng.standard_normal(A.size)
+    path2 = tmp_path / "neg2.csv"
+    path2.write_text("amplitude_m,force_sq_N2\n" + "".join(f"{float(x)!r},{float(v)!r}\n" for x, v in zip(A, y)))
+    r = fit_length(read_curve_csv(path2), "auto")
+    assert r.model == "potential" and r.fitted_quantity == "force_sq_N2"

@@ -25,8 +25,13 @@ def configure(parser) -> None:
     fit.add_argument("--convention", choices=("per-contact", "probe"), default="per-contact",
                      help="convention of amplitude_m in the file")
     fit.add_argument("--no-background", action="store_true", help="fit without a constant background")
-    fit.add_argument("--weighting", choices=("none", "relative"), default="none",
-                     help="relative: residuals divided by the data (noise proportional to the signal)")
+    fit.add_argument("--noise", choices=("additive", "proportional"),
+                     help="noise model: additive (constant sd, default) or proportional to the signal; "
+                          "the sd is estimated from the residuals in both")
+    fit.add_argument("--weighting", choices=("none", "relative"), default=None,
+                     help="older spelling: relative = --noise proportional")
+    fit.add_argument("--bootstrap", type=int, default=0,
+                     help="wild-bootstrap refits that widen the 68 %% interval (coverage then not tested)")
     fit.add_argument("--plot", default="tribospec_fit.png", help="PNG to write (default tribospec_fit.png)")
     fit.add_argument("--no-plot", action="store_true", help="do not write a figure")
     fit.add_argument("--seed", type=int, default=0, help="seed of the bootstrap")
@@ -98,8 +103,11 @@ def _fit(args) -> int:
     from ..models.tribospectroscopy import fit_length, read_curve_csv
 
     curve = read_curve_csv(args.data, args.convention)
-    res = fit_length(curve, args.model, background=not args.no_background, weighting=args.weighting, rng=args.seed)
-    out = {k: res[k] for k in ("length_m", "length_std_m", "model", "residual", "length_interval_m", "bounded", "aic",
+    res = fit_length(curve, args.model, background=not args.no_background, noise=args.noise, weighting=args.weighting,
+                     n_boot=args.bootstrap, rng=args.seed)
+    out = {k: res[k] for k in ("length_m", "length_std_m", "model", "residual", "length_interval_m",
+                               "length_interval_95_m", "interval_levels", "interval_method", "noise_model",
+                               "coverage_tested", "coverage_conditions", "bounded", "aic",
                                "force0_N", "background", "fitted_quantity", "convention", "amplitude_convention",
                                "weighting", "n_points", "delta_aic", "model_ambiguous", "candidates", "message", "status",
                                "time_s", "units")}

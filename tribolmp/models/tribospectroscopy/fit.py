@@ -10,7 +10,28 @@ interval instead of a confident wrong value.
 
 Fitted quantity: ``force_sq_N2`` data are fitted as ``F^2`` (as in Fig. 8),
 ``force_N`` data as ``F``; the two models are compared in the same space by
-AIC (equal numbers of parameters, so this is the residual comparison).
+AIC (equal numbers of parameters, so this is the likelihood comparison).
+
+Noise models (``noise=``), stated in every result:
+
+* ``"additive"``: y_i = f_i + e_i, e_i ~ N(0, s^2) with one unknown s,
+  estimated from the residuals.  Data may scatter below zero (a measured F or
+  F^2 whose noise straddles zero once the friction has vanished), so the
+  background B has no sign constraint.
+* ``"proportional"``: e_i ~ N(0, (c f_i)^2), c unknown.  Fitted by
+  iteratively reweighted least squares with weights 1/f_i from the fitted
+  model (floored at 2 % of its maximum, so exact zeros of the model do not
+  get infinite weight), the weights then held fixed for the interval.
+
+Intervals: profile likelihood with the residual variance estimated, i.e.
+{L : RSS(L) <= RSS_min (1 + F_{1,n-p}(level)/(n-p))}, at 68 % and 95 %; the
+hull of that set when it is disconnected.  Their coverage is *tested*
+(``tests/macro/test_fit_coverage.py``: >= 200 synthetic noisy sets per noise
+model and generating model, 20-26 amplitudes, noise 3 % additive or 10 %
+proportional): results carry ``coverage_tested = True`` only inside those
+conditions (profile interval, no bootstrap, >= 20 points).  Not calibrated:
+the stiffness curve under proportional noise (its kink sits where the noise
+vanishes; measured coverage 51 % / 82 %), reported with ``coverage_tested = False``.
 """
 
 from __future__ import annotations
@@ -87,7 +108,9 @@ def read_curve_csv(path: str | Path, convention: str = "per-contact") -> Measure
     ------
     DataFileError
         Missing file or columns, non-numeric or non-finite cells, negative
-        amplitudes or forces, fewer than 3 rows or fewer than 2 distinct amplitudes.
+        amplitudes, fewer than 3 rows or fewer than 2 distinct amplitudes.
+        Negative ``force_N`` or ``force_sq_N2`` values are accepted: measured
+        data scatter around zero once the friction has vanished.
     """
     name = str(path)
     try:
@@ -117,7 +140,8 @@ def read_curve_csv(path: str | Path, convention: str = "per-contact") -> Measure
                 raise DataFileError(f"{name}: line {lineno}: {cname}: expected a finite number, got {cell!r}") from None
             if not math.isfinite(x):
                 raise DataFileError(f"{name}: line {lineno}: {cname}: expected a finite number, got {cell!r}")
-            if x < 0:
+            if x < 0 and cname == "amplitude_m":
+                # forces may scatter below zero (noise around zero); amplitudes may not
                 raise DataFileError(f"{name}: line {lineno}: {cname}: expected a value >= 0, got {cell!r}")
             out.append(x)
     if len(amp) < 3 or len(set(amp)) < 2:
@@ -138,138 +162,160 @@ def write_curve_csv(path: str | Path, amplitude, force) -> Path:
     return path
 
 
-def _project_many(a, y, lengths, shape, quantity: str, background: bool, w=None):
-    """Best non-negative (A, B) for each fixed L (closed-form 2x2 least squares).
-
-    Returns arrays (weighted rss, A, B) over ``lengths``.  With the
-    non-negativity constraints the optimum is either the unconstrained one or
-    lies on an edge (A = 0 or B = 0), each again a 1-parameter closed form.
-    """
-    w = np.ones_like(y) if w is None else w
-    L = np.atleast_1d(np.asarray(lengths, dtype=float))
-    f = shape(a[None, :] / L[:, None], quantity) * w  # (nL, n)
-    yw, one = y * w, w
-    sff, sfy = np.einsum("ij,ij->i", f, f), f @ yw
-    syy = float(yw @ yw)
+def _ls_rows(f, y, W, background: bool):
+    """Per-row weighted least squares of y ~ A f + B (A >= 0, B free); returns (rss_w, A, B)."""
     tiny = 1e-300
-    # A only (B = 0)
-    A1 = np.maximum(sfy, 0.0) / np.maximum(sff, tiny)
-    best_rss = syy - 2 * A1 * sfy + A1 * A1 * sff
-    best_A, best_B = A1, np.zeros_like(A1)
-    if background:
-        s11, s1y, sf1 = float(one @ one), float(one @ yw), f @ one
-        B2 = max(s1y, 0.0) / s11  # B only (A = 0)
-        rss2 = syy - 2 * B2 * s1y + B2 * B2 * s11
-        det = sff * s11 - sf1 * sf1
-        ok = det > 1e-12 * sff * s11
-        with np.errstate(divide="ignore", invalid="ignore"):
-            A3 = np.where(ok, (sfy * s11 - sf1 * s1y) / det, -1.0)
-            B3 = np.where(ok, (sff * s1y - sf1 * sfy) / det, -1.0)
-        rss3 = syy - 2 * (A3 * sfy + B3 * s1y) + A3 * A3 * sff + 2 * A3 * B3 * sf1 + B3 * B3 * s11
-        feas3 = ok & (A3 >= 0) & (B3 >= 0)
-        use2 = rss2 < best_rss
-        best_rss = np.where(use2, rss2, best_rss)
-        best_A = np.where(use2, 0.0, best_A)
-        best_B = np.where(use2, B2, best_B)
-        use3 = feas3 & (rss3 < best_rss)
-        best_rss = np.where(use3, rss3, best_rss)
-        best_A = np.where(use3, A3, best_A)
-        best_B = np.where(use3, B3, best_B)
-    return np.maximum(best_rss, 0.0), best_A, best_B
+    W2 = W * W
+    sff, sfy = np.sum(f * f * W2, axis=-1), np.sum(f * y * W2, axis=-1)
+    syy = np.sum(y * y * W2, axis=-1)
+    if not background:
+        A = np.maximum(sfy, 0.0) / np.maximum(sff, tiny)
+        return np.maximum(syy - 2 * A * sfy + A * A * sff, 0.0), A, np.zeros_like(A)
+    s11, s1y, sf1 = np.sum(W2, axis=-1), np.sum(y * W2, axis=-1), np.sum(f * W2, axis=-1)
+    det = sff * s11 - sf1 * sf1
+    ok = det > 1e-12 * np.maximum(sff * s11, tiny)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        A = np.where(ok, (sfy * s11 - sf1 * s1y) / np.where(ok, det, 1.0), 0.0)
+    A = np.maximum(A, 0.0)
+    B = (s1y - A * sf1) / s11
+    rss = syy - 2 * (A * sfy + B * s1y) + A * A * sff + 2 * A * B * sf1 + B * B * s11
+    return np.maximum(rss, 0.0), A, B
 
 
-def _project(a, y, length: float, shape, quantity: str, background: bool, w=None):
-    """Scalar version of :func:`_project_many`: (rss, A, B) at one L."""
-    r, A, B = _project_many(a, y, [length], shape, quantity, background, w)
-    return float(r[0]), float(A[0]), float(B[0])
+#: proportional noise: the model value is floored at this share of its maximum in the weights
+PROPORTIONAL_FLOOR = 0.02
 
 
-def _crossing(fun, lo: float, hi: float) -> float:
-    """Where the RSS profile crosses the threshold between two grid points (bisection in ln L)."""
-    from scipy.optimize import brentq
+def _deviance_many(a, y, lengths, shape, quantity: str, background: bool, noise: str):
+    """Profile deviance -2 ln(likelihood) (up to a constant) over L, with the best (A, B) at each L.
 
-    flo, fhi = fun(lo), fun(hi)
-    if flo * fhi > 0:  # no sign change inside (the optimum sits at the threshold)
-        return lo if abs(flo) < abs(fhi) else hi
-    return math.exp(brentq(lambda t: fun(math.exp(t)), math.log(lo), math.log(hi), xtol=1e-12, rtol=1e-10))
+    Additive noise: ``n ln(RSS/n)``.  Proportional noise (sd = c f_i):
+    ``n ln(RSS_w/n) + 2 sum ln f_i`` with weights ``1/f_i`` of the model at that
+    L (floored), found by a fixed-point iteration (IRLS) per L.
+    Returns arrays (deviance, A, B, rss_w).
+    """
+    L = np.atleast_1d(np.asarray(lengths, dtype=float))
+    f = shape(a[None, :] / L[:, None], quantity)  # (nL, n)
+    W = np.ones_like(f)
+    rss, A, B = _ls_rows(f, y[None, :], W, background)
+    norm = np.zeros_like(rss)
+    if noise == "proportional":
+        for _ in range(6):
+            m = np.abs(A[:, None] * f + B[:, None])
+            W = 1.0 / np.maximum(m, PROPORTIONAL_FLOOR * m.max(axis=1, keepdims=True) + 1e-300)
+            rss, A, B = _ls_rows(f, y[None, :], W, background)
+        norm = 2.0 * np.sum(np.log(1.0 / W), axis=1)
+    n = a.size
+    dev = n * np.log(np.maximum(rss, 1e-300) / n) + norm
+    return dev, A, B, rss
 
 
-def _best_length(a, y, quantity, shape, background, grid, w):
-    """Global grid scan of the RSS profile, then a bounded refinement; returns (L, rss_grid, i)."""
+def _deviance(a, y, length: float, shape, quantity: str, background: bool, noise: str):
+    """Scalar version of :func:`_deviance_many`: (deviance, A, B, rss) at one L."""
+    d, A, B, r = _deviance_many(a, y, [length], shape, quantity, background, noise)
+    return float(d[0]), float(A[0]), float(B[0]), float(r[0])
+
+
+def _best_length(a, y, quantity, shape, background, grid, noise):
+    """Global grid scan of the deviance profile, then a bounded refinement; returns (L, dev_grid)."""
     from scipy.optimize import minimize_scalar
 
-    rss = _project_many(a, y, grid, shape, quantity, background, w)[0]
-    i = int(np.argmin(rss))
+    dev = _deviance_many(a, y, grid, shape, quantity, background, noise)[0]
+    i = int(np.argmin(dev))
     n_grid = grid.size
     lb, ub = np.log(grid[max(i - 1, 0)]), np.log(grid[min(i + 1, n_grid - 1)])
     best = minimize_scalar(
-        lambda t: _project(a, y, math.exp(t), shape, quantity, background, w)[0],
+        lambda t: _deviance(a, y, math.exp(t), shape, quantity, background, noise)[0],
         bounds=(lb, ub), method="bounded", options={"xatol": 1e-10},
     )
     length = math.exp(best.x)
-    if rss[i] < _project(a, y, length, shape, quantity, background, w)[0]:
+    if dev[i] < _deviance(a, y, length, shape, quantity, background, noise)[0]:
         length = grid[i]  # flat profile: the grid point was better
-    return length, rss, i
+    return length, dev
 
 
-def _fit_one(curve: MeasuredCurve, model: str, background: bool, n_grid: int, n_boot: int, rng, weighting: str) -> dict:
+def _profile_interval(a, y, shape, quantity, background, noise, grid, dev, length, thresh):
+    """Hull of {L : D(L) <= thresh} (edges by bisection in ln L) and whether both edges are inside the grid."""
+    from scipy.optimize import brentq
+
+    def prof(t):
+        return _deviance(a, y, math.exp(t), shape, quantity, background, noise)[0] - thresh
+
+    n_grid = grid.size
+    inside = np.nonzero(dev <= thresh)[0]
+    # The confidence set can be disconnected (the pinning profile has side
+    # minima): report its hull, so that a second branch widens the interval.
+    lo_in = min(grid[inside.min()], length) if inside.size else length
+    hi_in = max(grid[inside.max()], length) if inside.size else length
+    j0 = int(np.searchsorted(grid, lo_in)) - 1  # last grid point below the set
+    j1 = int(np.searchsorted(grid, hi_in, side="right"))  # first above it
+
+    def edge(t_out, t_in):
+        f_out, f_in = prof(t_out), prof(t_in)
+        if f_out * f_in > 0:
+            return t_in if abs(f_in) < abs(f_out) else t_out
+        return brentq(prof, min(t_out, t_in), max(t_out, t_in), xtol=1e-12, rtol=1e-10)
+
+    lo_L = math.exp(edge(math.log(grid[j0]), math.log(lo_in))) if j0 >= 0 else grid[0]
+    hi_L = math.exp(edge(math.log(grid[j1]), math.log(hi_in))) if j1 < n_grid else grid[-1]
+    return float(lo_L), float(hi_L), bool(j0 >= 0 and j1 < n_grid)
+
+
+#: the interval levels reported (68 % and 95 %)
+LEVELS = (0.6827, 0.9545)
+#: the noise models of :func:`fit_length`
+NOISE_MODELS = ("additive", "proportional")
+#: the design the coverage test runs (the conditions of ``coverage_tested``)
+COVERAGE_MIN_POINTS = 20
+
+
+def _fit_one(curve: MeasuredCurve, model: str, background: bool, n_grid: int, n_boot: int, rng, noise: str) -> dict:
     from scipy.special import fdtri
 
     shape = SHAPES.get(model, "model")
     a, y = curve.amplitude, curve.value
-    # relative weighting: residuals in units of the measured value (multiplicative noise)
-    w = 1.0 / np.maximum(np.abs(y), 1e-3 * np.abs(y).max() + 1e-300) if weighting == "relative" else None
     apos = a[a > 0]
     lo, hi = apos.min() / 100.0, a.max() * 100.0
     grid = np.geomspace(lo, hi, n_grid)
-    length, rss, i = _best_length(a, y, curve.quantity, shape, background, grid, w)
-    rss_min, amp, bg = _project(a, y, length, shape, curve.quantity, background, w)
+    length, dev = _best_length(a, y, curve.quantity, shape, background, grid, noise)
+    dev_min, amp, bg, rss_min = _deviance(a, y, length, shape, curve.quantity, background, noise)
     n, p = a.size, 3 if background else 2
     dof = n - p
-    if dof > 0:
-        # 68 % profile-likelihood interval with the noise estimated from the
-        # residuals: F-test threshold (exact for linear models, honest for small n).
-        thresh = rss_min * (1.0 + fdtri(1, dof, 0.6827) / dof)
-        prof = lambda L: _project(a, y, L, shape, curve.quantity, background, w)[0] - thresh  # noqa: E731
-        # The confidence set {L : RSS(L) <= thresh} can be disconnected (the
-        # pinning profile has side minima); report its hull, not the branch
-        # around the optimum, so that a second branch widens the interval.
-        inside = np.nonzero(rss <= thresh)[0]
-        k0 = int(inside.min()) if inside.size and grid[inside.min()] < length else None
-        k1 = int(inside.max()) if inside.size and grid[inside.max()] > length else None
-        lo_in = grid[k0] if k0 is not None else length
-        hi_in = grid[k1] if k1 is not None else length
-        j0 = (k0 - 1 if k0 >= 1 else None) if k0 is not None else int(np.searchsorted(grid, length)) - 1
-        j1 = (k1 + 1 if k1 + 1 < n_grid else None) if k1 is not None else int(np.searchsorted(grid, length, side="right"))
-        if j0 is not None and j0 < 0:
-            j0 = None
-        if j1 is not None and j1 >= n_grid:
-            j1 = None
-        lo_L = _crossing(prof, grid[j0], lo_in) if j0 is not None else grid[0]
-        hi_L = _crossing(prof, hi_in, grid[j1]) if j1 is not None else grid[-1]
-        bounded = j0 is not None and j1 is not None
-        if n_boot > 0 and rss_min > 0:
-            # Wild bootstrap (Rademacher signs on the residuals) keeps
-            # heteroscedastic noise, which the profile's single sigma does not.
+    intervals, bounded = [], dof > 0
+    if dof > 0 and rss_min > 1e-300:
+        for level in LEVELS:
+            # profile likelihood with the noise scale estimated: D <= D_min + n ln(1 + F_{1,dof}/dof)
+            # (for additive noise exactly RSS <= RSS_min (1 + F/dof), the F-test set of a linear model)
+            thresh = dev_min + n * math.log1p(fdtri(1, dof, level) / dof)
+            lo_L, hi_L, ok = _profile_interval(a, y, shape, curve.quantity, background, noise, grid, dev, length, thresh)
+            intervals.append([lo_L, hi_L])
+            bounded = bounded and ok
+        if n_boot > 0:
+            # optional wild bootstrap (Rademacher signs on the residuals): widens the 68 % interval
+            # to the hull with its 16-84 % range; the coverage of that hull is NOT tested
             fitted = amp * shape(a / length, curve.quantity) + bg
             resid = y - fitted
             coarse = np.geomspace(lo, hi, 61)
             boots = np.array([
-                _best_length(a, fitted + resid * rng.choice((-1.0, 1.0), a.size), curve.quantity, shape, background, coarse, w)[0]
+                _best_length(a, fitted + resid * rng.choice((-1.0, 1.0), a.size), curve.quantity, shape, background,
+                             coarse, noise)[0]
                 for _ in range(n_boot)
             ])
             b_lo, b_hi = np.percentile(boots, [15.87, 84.13])
-            lo_L, hi_L = min(lo_L, b_lo), max(hi_L, b_hi)
+            intervals[0] = [min(intervals[0][0], b_lo), max(intervals[0][1], b_hi)]
             bounded = bounded and b_lo > coarse[1] and b_hi < coarse[-2]
-        std = 0.5 * (hi_L - lo_L)
+    elif dof > 0:  # exact data: the interval collapses onto the optimum
+        intervals = [[length, length], [length, length]]
     else:
-        lo_L, hi_L, bounded, std = grid[0], grid[-1], False, 0.5 * (grid[-1] - grid[0])
-    aic = n * math.log(max(rss_min / n, 1e-300)) + 2 * p
+        intervals, bounded = [[grid[0], grid[-1]], [grid[0], grid[-1]]], False
+    std = 0.5 * (intervals[0][1] - intervals[0][0])
+    aic = dev_min + 2 * p
     return dict(
         model=model,
         length_m=length,
         length_std_m=float(std),
-        length_interval_m=[float(lo_L), float(hi_L)],
+        length_interval_m=[float(v) for v in intervals[0]],
+        length_interval_95_m=[float(v) for v in intervals[1]],
         bounded=bool(bounded),
         amplitude=float(amp),
         background=float(bg),
@@ -286,8 +332,9 @@ def fit_length(
     *,
     background: bool = True,
     n_grid: int = 241,
-    n_boot: int = 40,
-    weighting: str = "none",
+    n_boot: int = 0,
+    noise: str | None = None,
+    weighting: str | None = None,
     rng: np.random.Generator | int | None = 0,
 ) -> Result:
     """Fit the characteristic length of friction to a measured curve.
@@ -295,20 +342,22 @@ def fit_length(
     Parameters
     ----------
     curve : MeasuredCurve
-        Data with per-contact amplitudes (see :func:`read_curve_csv`).
+        Data with per-contact amplitudes (see :func:`read_curve_csv`); values
+        may scatter below zero.
     model : {"stiffness", "potential", "auto"}
         ``auto`` fits both and keeps the one with the lower AIC.
     background : bool
-        Fit an amplitude-independent background ``B >= 0`` as well.
+        Fit an amplitude-independent background ``B`` (any sign) as well.
     n_grid : int
         Points of the log-spaced profile scan of ``L`` over
         ``[min a / 100, 100 max a]``.
     n_boot : int
-        Wild-bootstrap refits; the reported interval is the hull of the
-        profile interval and the bootstrap 16-84 % range (0 = profile only).
-    weighting : {"none", "relative"}
-        ``relative`` divides residuals by the measured value (use it for
-        noise proportional to the signal); ``residual`` is then relative too.
+        Optional wild-bootstrap refits that widen the 68 % interval to the
+        hull with their 16-84 % range (0 = profile only, the tested method).
+    noise : {"additive", "proportional"}
+        Noise model (see the module notes); default ``additive``.
+    weighting : {"none", "relative"}, optional
+        Older spelling: ``relative`` is ``noise="proportional"``.
     rng : Generator or int
         Random source of the bootstrap (explicit, reproducible).
 
@@ -316,27 +365,47 @@ def fit_length(
     -------
     Result
         ``length_m`` (per-contact length: ``lambda`` of the pinning model or
-        ``mu N / k`` of the stiffness model), ``length_std_m`` (half-width of
-        the 68 % profile interval; huge and ``bounded = False`` when the data
-        cannot pin it down), ``model``, ``residual`` (rms, in N or N^2),
-        ``aic``, ``force0_N``, ``background``, ``candidates`` (every model fitted).
+        ``mu N / k`` of the stiffness model), ``length_interval_m`` (68 %) and
+        ``length_interval_95_m`` (95 %, m), ``length_std_m`` (half-width of the
+        68 % interval), ``bounded`` (False when the data cannot pin L down),
+        ``noise_model``, ``coverage_tested`` (the interval is the tested method
+        under tested conditions), ``model``, ``residual`` (rms, weighted for
+        proportional noise), ``aic``, ``force0_N``, ``background``,
+        ``candidates`` (every model fitted).
     """
     if model not in FIT_MODELS:
         raise ParameterError("model", f"one of {list(FIT_MODELS)}", model)
-    if weighting not in ("none", "relative"):
+    if weighting not in (None, "none", "relative"):
         raise ParameterError("weighting", "one of ['none', 'relative']", weighting)
+    if noise is None:
+        noise = "proportional" if weighting == "relative" else "additive"
+    if noise not in NOISE_MODELS:
+        raise ParameterError("noise", f"one of {list(NOISE_MODELS)}", noise)
     res = Result(method="variable-projection profile fit")
     with timed(res):
         names = ["stiffness", "potential"] if model == "auto" else [model]
         gen = as_generator(rng)
-        cands = {m: _fit_one(curve, m, background, n_grid, n_boot, gen, weighting) for m in names}
+        cands = {m: _fit_one(curve, m, background, n_grid, n_boot, gen, noise) for m in names}
         best = min(cands.values(), key=lambda c: c["aic"])
     q = curve.quantity
     force0 = math.sqrt(best["amplitude"]) if q == "force_sq" else best["amplitude"]
+    # the stiffness curve under proportional noise is not calibrated: its kink sits where the
+    # noise vanishes, the likelihood is not regular there, and the measured coverage is 51 % / 82 %
+    tested = bool(n_boot == 0 and curve.amplitude.size >= COVERAGE_MIN_POINTS and best["bounded"]
+                  and not (noise == "proportional" and best["model"] == "stiffness"))
     res.update(
         length_m=best["length_m"],
         length_std_m=best["length_std_m"],
         length_interval_m=best["length_interval_m"],
+        length_interval_95_m=best["length_interval_95_m"],
+        interval_levels=list(LEVELS),
+        interval_method="profile likelihood, F threshold (noise estimated)" + (" + wild bootstrap hull" if n_boot else ""),
+        noise_model=noise,
+        coverage_tested=tested,
+        coverage_conditions=(f"coverage of the 68 %/95 % intervals tested in tests/macro/test_fit_coverage.py: "
+                             f"profile interval without bootstrap, >= {COVERAGE_MIN_POINTS} amplitudes (0-10 lambda pinning, "
+                             f"0-2 L stiffness), 3 % additive or 10 % proportional noise; not calibrated: "
+                             f"stiffness model with proportional noise"),
         bounded=best["bounded"],
         model=best["model"],
         residual=best["residual"],
@@ -348,11 +417,12 @@ def fit_length(
         amplitude_convention=CONVENTION_TEXT[curve.convention] + "; length_m is per contact",
         n_points=int(curve.amplitude.size),
         candidates={m: {k: v for k, v in c.items() if k != "model"} for m, c in cands.items()},
-        message=(f"{best['model']}: L = {best['length_m']:.4g} m +- {best['length_std_m']:.2g} m"
+        message=(f"{best['model']}: L = {best['length_m']:.4g} m, 68 % in [{best['length_interval_m'][0]:.3g}, "
+                 f"{best['length_interval_m'][1]:.3g}] m ({noise} noise)"
                  + ("" if best["bounded"] else " (not identifiable from these data)")),
-        weighting=weighting,
-        units={"length_m": "m", "length_std_m": "m",
-               "residual": "1" if weighting == "relative" else ("N^2" if q == "force_sq" else "N"),
+        weighting="relative" if noise == "proportional" else "none",
+        units={"length_m": "m", "length_std_m": "m", "length_interval_m": "m", "length_interval_95_m": "m",
+               "residual": "1" if noise == "proportional" else ("N^2" if q == "force_sq" else "N"),
                "force0_N": "N", "background": "N^2" if q == "force_sq" else "N"},
     )
     aics = sorted(c["aic"] for c in cands.values())

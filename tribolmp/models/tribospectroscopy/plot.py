@@ -40,7 +40,7 @@ def plot_fit(curve: MeasuredCurve, fit, path: str | Path, *, title: str = "") ->
     top = ax.secondary_xaxis("top", functions=(lambda x: 2.0 * x, lambda x: 0.5 * x))
     top.set_xlabel("probe amplitude Δl/2 (µm)", fontsize=8)
     ax.set_ylabel("F² (N²)" if q == "force_sq" else "F (N)")
-    ax.set_ylim(bottom=0)
+    ax.set_ylim(bottom=min(0.0, float(np.min(curve.value))))  # data may scatter below zero
     ax.set_xlim(left=0)
     ax.legend(fontsize=8)
     ax.set_title(title or f"tribospectroscopy fit (best: {fit.model})", fontsize=10)
