@@ -14,7 +14,7 @@ from typing import Any
 from ...errors import ParameterError
 from ...scene.fields import param, validate_dataclass
 from ...scene.schema import Material, Nanoscale
-from ..laws import get_law, law_names
+from ..laws import get_law
 from ..mapping import MaterialSpec
 
 __all__ = ["PRESETS", "MCAParams", "params_from_scene", "preset_params"]
@@ -37,7 +37,8 @@ class MCAParams:
 
     dim: int = _scene_field(Nanoscale, "dim")
     automaton_diameter: float = _scene_field(Nanoscale, "automaton_diameter")
-    bond_style: str = _scene_field(Nanoscale, "bond_style", choices=law_names())
+    # the choices are the law registry's, checked in __post_init__ (a registered law needs no other edit)
+    bond_style: str = _scene_field(Nanoscale, "bond_style", choices=None)
     sliding_velocity: float = _scene_field(Nanoscale, "sliding_velocity")
     pressure: float = _scene_field(Nanoscale, "pressure")
     duration: float = _scene_field(Nanoscale, "duration")
@@ -104,6 +105,7 @@ class MCAParams:
 
     def __post_init__(self) -> None:
         validate_dataclass(self)
+        get_law(self.bond_style)  # one line naming the registered laws otherwise
         d = self.automaton_diameter
         if self.box_length < 8 * d:
             raise ParameterError(
