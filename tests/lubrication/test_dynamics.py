@@ -194,3 +194,14 @@ def test_mixed_lubrication_on_contact_engineers_rough_profile():
     # second order: k_eff = u^3 - 1.5 u sigma^2 < u^3), and the 2D-checked flow factor
     # (test_flow_factor.py) adds < 30 % down to u = 2.5 sigma.
     assert 1.0 < res.contact_time / t_plate < 1.3
+
+
+def test_cox_brenner_gap_below_float_range_is_stated_not_clamped():
+    # 1e6 N: ln h falls by W dt / alpha = 9.4e11 per step.  The old inverse clamped h at
+    # e^-700 without a word (log_h stuck at -700); now ln h follows the small-gap asymptote
+    # Phi = alpha ln h (corrections (h/R) ln(R/h) < 1e-300) and the message says h underflowed.
+    p = FilmParams(radius=R, viscosity=ETA, load=1e6, gap0=1e-5, model="cox-brenner", duration=1.0, steps=3)
+    res = approach(p)
+    assert np.all(res.h[1:] == 0.0) and not res.collapsed
+    assert np.allclose(np.diff(res.log_h[1:]), -1e6 * (1 / 3) / ALPHA, rtol=1e-12)
+    assert res.log_h[-1] < -1e11 and "below the smallest float" in res.message

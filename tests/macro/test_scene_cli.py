@@ -22,7 +22,9 @@ def test_params_from_scene_and_chain_entry_points():
     assert r.length_m == pytest.approx(mu_n / 1e7)
     sp = macro.params_from_scene(scene)
     assert sp.mass == scene.kinematics.mass
-    res = macro.stick_slip_from_scene(scene, contact_law="mdr", law=macro.ConstantFriction(0.35, 0.3), duration=2e-3)
+    # the default scene's profile is rough: its MDR row is drawn from an explicit Generator
+    res = macro.stick_slip_from_scene(scene, contact_law="mdr", law=macro.ConstantFriction(0.35, 0.3), duration=2e-3,
+                                      rng=np.random.default_rng(0))
     assert res.events[0]["from_phase"] == "stick"
 
 
@@ -94,3 +96,17 @@ def test_rough_contact_from_the_contact_model(rng):
     res = macro.stick_slip_from_scene(scene, contact_law="mdr", law=macro.ConstantFriction(0.4, 0.3),
                                       rng=np.random.default_rng(3), duration=5e-3, unload_time=4e-3)
     assert np.all(np.isfinite(res.x))
+
+
+def test_rough_profile_without_rng_is_an_error_not_a_sphere():
+    # the old adapter silently returned the sphere of [geometry].radius here
+    from tribolmp.errors import ParameterError
+
+    scene = default_scene()
+    assert scene.geometry.profile == "rough"
+    with pytest.raises(ParameterError, match="rng"):
+        macro.contact_from_scene(scene)
+    # the CLI draws it from [scene].seed: reproducible, and a rough row (many summits), not a sphere
+    a = macro.contact_from_scene(scene, rng=np.random.default_rng(scene.scene.seed), n_springs=256)
+    b = macro.contact_from_scene(scene, rng=np.random.default_rng(scene.scene.seed), n_springs=256)
+    assert np.array_equal(a.g, b.g) and np.count_nonzero(np.diff(np.sign(np.diff(a.g))) > 0) > 3

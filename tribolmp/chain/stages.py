@@ -378,7 +378,8 @@ def macroscale(ctx: StageContext) -> StageOutput:
     from ..models import macro
 
     mu, mu_src = _friction_coefficient(ctx)
-    kw: dict[str, Any] = {"mu": mu}
+    # the rough MDR profile (if the scene has one) is drawn from the chain's stream, never silently a sphere
+    kw: dict[str, Any] = {"mu": mu, "rng": ctx.rng}
     if ctx.plan.options.get("contact_law") == "stiffness" and "contact" in ctx.upstream:
         kc, kc_src = tangential_stiffness_from_contact(ctx.upstream["contact"], ctx.scene)
         kw["contact_stiffness"] = kc

@@ -60,6 +60,13 @@ def run(args) -> int:
     return 0
 
 
+def _profile_rng(scene):
+    """Generator of a rough scene's MDR profile: drawn from ``[scene].seed`` (explicit, reproducible)."""
+    import numpy as np
+
+    return np.random.default_rng(scene.scene.seed)
+
+
 def _stick_slip(args, scene) -> dict:
     import numpy as np
 
@@ -80,7 +87,7 @@ def _stick_slip(args, scene) -> dict:
     if args.velocity is not None:
         over["drive_velocity"] = args.velocity
     res = stick_slip_from_scene(scene, contact_law=args.contact, law=law, contact_stiffness=args.contact_stiffness,
-                                method=args.method, contact_gap=args.contact_gap, **over)
+                                method=args.method, contact_gap=args.contact_gap, rng=_profile_rng(scene), **over)
     f = res.drive_force
     out = {
         "method": res.method,
@@ -112,7 +119,7 @@ def _oscillate(args, scene) -> dict:
     from ..models.macro import oscillation_from_scene
 
     res = oscillation_from_scene(scene, args.amplitude, frequency=args.frequency, cycles=args.cycles,
-                                 steps_per_cycle=args.steps_per_cycle, mu=args.mu)
+                                 steps_per_cycle=args.steps_per_cycle, mu=args.mu, rng=_profile_rng(scene))
     spc = args.steps_per_cycle
     last = slice(res.force_x.size - spc - 1, res.force_x.size)
     return {
@@ -133,7 +140,7 @@ def _squeeze(args, scene) -> dict:
     over = {k: v for k, v in (("load", args.load), ("gap", args.gap), ("duration", args.duration), ("mass", args.mass))
             if v is not None}
     p = squeeze_params_from_scene(scene, contact_gap=args.contact_gap, **over)
-    res = squeeze_approach(p, contact_from_scene(scene) if p.contact_gap > 0 else None)
+    res = squeeze_approach(p, contact_from_scene(scene, rng=_profile_rng(scene)) if p.contact_gap > 0 else None)
     return {
         "load_N": p.load,
         "initial_gap_m": p.gap,

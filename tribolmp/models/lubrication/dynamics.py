@@ -120,17 +120,22 @@ def _primitive(p: FilmParams):
             h = np.asarray(h, dtype=float)
             return alpha * (np.log(h) + 0.2 / R * (h * np.log(R / h) + h) + 0.9713 * h / R)
 
-        def inv(y):
+        def inv_log(y):
             from scipy.optimize import brentq
 
             y = float(y)
             # solve in u = ln h; Phi is increasing in h
             lo, hi = -700.0, math.log(10.0 * p.gap0 + R)
             if float(phi(math.exp(lo))) >= y:
-                return math.exp(lo)
-            u = brentq(lambda u: float(phi(math.exp(u))) - y, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=400)
-            return math.exp(u)
+                # h < e^-700 m: the corrections (h/R) ln(R/h) are < 1e-300, so Phi = alpha ln h
+                # exactly in float; ln h is returned, h itself underflows (stated by approach())
+                return y / alpha
+            return brentq(lambda u: float(phi(math.exp(u))) - y, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=400)
 
+        def inv(y):
+            return math.exp(inv_log(y))
+
+        inv.log = inv_log
         return phi, inv, None
     n = p.n
     C = _power_law_coefficient(p)
@@ -165,6 +170,10 @@ def _log_gap(p: FilmParams, t: np.ndarray) -> np.ndarray:
     """ln h(t) without underflow for the damper (ln h = ln h0 - W t / alpha); else ln of the gap."""
     if p.model == "damper":
         return math.log(p.gap0) - p.load * t / (6.0 * math.pi * p.viscosity * p.radius**2)
+    phi, inv, _ = _primitive(p)
+    if hasattr(inv, "log"):  # Cox-Brenner: ln h without underflow
+        y0, W = float(phi(p.gap0)), p.load ** (1.0 / p.n)
+        return np.array([inv.log(y0 - W * float(tt)) for tt in np.atleast_1d(t)])
     with np.errstate(divide="ignore"):
         return np.log(exact_gap(p, t))
 
@@ -248,6 +257,11 @@ def approach(params: FilmParams, *, scheme: str = "log", rng=None) -> Result:
         res.message = f"gap went negative ({res.min_gap:.3g} m): the step is too large for scheme '{scheme}'"
     else:
         res.message = "film collapsed (contact)" if res.collapsed else "film intact"
+        under = (h == 0.0) & ~res.collapsed
+        if under.any():
+            res.underflow_time = float(t[np.argmax(under)])
+            res.message += (f"; the gap fell below the smallest float (1e-308 m) at t = {res.underflow_time:.3g} s: "
+                            "h is reported as 0, log_h carries ln h")
     return res
 
 

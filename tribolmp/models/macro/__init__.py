@@ -95,13 +95,18 @@ def contact_from_scene(scene, *, mu: float | None = None, n_springs: int | None 
     ``[geometry].profile`` sphere/cone/flat maps directly.  ``rough`` with an
     ``rng`` (numpy Generator) and a ``[roughness]`` section draws one random 1D
     MDR profile of the contact model (``rough.mdr_profiles_from_psd``,
-    ``grid_points`` springs at ``pixel_size``); without an ``rng`` it uses
-    the sphere of ``[geometry].radius``.
+    ``grid_points`` springs at ``pixel_size``).  A rough profile without an
+    ``rng`` (or without ``[roughness]``) is a ParameterError: it used to become
+    the sphere of ``[geometry].radius`` without a word.
     """
     geo = scene.geometry
     E, G = scene.effective_modulus, scene.effective_shear_modulus
     mu = scene.load.friction_coefficient if mu is None else mu
-    if geo.profile == "rough" and rng is not None and scene.roughness is not None:
+    if geo.profile == "rough" and (rng is None or scene.roughness is None):
+        raise ParameterError("rng" if rng is None else "[roughness]",
+                             "a numpy Generator to draw the rough MDR profile of [geometry].profile = 'rough'"
+                             if rng is None else "a [roughness] section for [geometry].profile = 'rough'", None)
+    if geo.profile == "rough":
         from ..contact.rough import mdr_profiles_from_psd, self_affine_psd
 
         r = scene.roughness
