@@ -3,7 +3,7 @@
 Layers, bottom to top (STYLE: foundations <- scene <- models <- analysis/lammps
 <- chain <- cli)::
 
-    0 foundations   tribolmp/__init__, errors, units, rng, params, jsonio, results, records,
+    0 foundations   tribolmp/__init__, errors, units, rng, params, jsonio, results, records, locking,
                     environment, benchmarking
     1 scene         tribolmp.scene
     2 models        tribolmp.models
@@ -28,7 +28,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2] / "tribolmp"
 
-FOUNDATIONS = {"tribolmp", "errors", "units", "rng", "params", "jsonio", "results", "records", "environment", "benchmarking"}
+FOUNDATIONS = {"tribolmp", "errors", "units", "rng", "params", "jsonio", "results", "records", "environment", "benchmarking", "locking"}
 LAYER = {"scene": 1, "models": 2, "analysis": 3, "lammps": 3, "chain": 4, "cli": 5, "__main__": 5}
 #: Downward pairs that are still forbidden (importer package, imported package): the analysis reads
 #: LAMMPS output files only and validates with the foundations, not with the models.

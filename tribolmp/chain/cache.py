@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from ..jsonio import atomic_write_json, atomic_write_text, canonical_json, hash_inputs
+from ..locking import DirLock
 
 __all__ = ["StageCache", "CachedStage", "hash_inputs", "canonical_json", "atomic_write_text", "atomic_write_json"]
 
@@ -86,7 +87,24 @@ class StageCache:
             return None
         if record.get("key") != key or not record.get("complete"):
             return None
+        # A hand-off file that was truncated or deleted after the commit (a full disk, a copy
+        # interrupted by the user) must not be trusted as a hit: recompute instead.
+        for name, size in record.get("file_sizes", {}).items():
+            try:
+                if (path / name).stat().st_size != size:
+                    return None
+            except OSError:
+                return None
         return CachedStage(stage, key, path, record)
+
+    def entry_lock(self, stage: str, key: str, *, quiet: bool = False) -> DirLock:
+        """The (unacquired) lock that serialises computing one entry across processes.
+
+        Two runs sharing a cache folder then compute an entry once: the second
+        waits, and finds the committed result when it gets the lock.
+        """
+        self.root.mkdir(parents=True, exist_ok=True)
+        return DirLock(self.root, wait=True, what=f"cache entry {stage}-{key}", name=f".{stage}-{key}.lock", quiet=quiet)
 
     def workdir(self, stage: str, key: str, *, fresh: bool = False) -> Path:
         """Create (or reuse, for checkpoint resume) the working folder; ``fresh`` empties it."""
@@ -110,7 +128,12 @@ class StageCache:
     def commit(self, stage: str, key: str, record: dict) -> CachedStage:
         """Write ``result.json`` into the working folder and rename it to the final folder."""
         work = self.partial_dir(stage, key)
-        record = {**record, "stage": stage, "key": key, "complete": True}
+        sizes = {}
+        for rel in (record.get("files") or {}).values():
+            f = work / rel
+            if f.is_file():
+                sizes[rel] = f.stat().st_size
+        record = {**record, "stage": stage, "key": key, "complete": True, "file_sizes": sizes}
         atomic_write_json(work / "result.json", record)
         final = self.final_dir(stage, key)
         if final.exists():  # a concurrent or forced rerun: replace the old result

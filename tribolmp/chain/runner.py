@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import SetupError, StageError
+from ..locking import DirLock, prepare_dir
 from ..scene import Scene
 from .cache import CachedStage, StageCache, hash_inputs
 from .planner import STAGES, Plan, code_hash, plan_scene
@@ -179,11 +180,20 @@ def run_chain(
     SetupError
         After the report is written, when a stage rejected its inputs.
     """
+    out = prepare_dir(out_dir, "--out")
+    if cache_dir is not None:
+        prepare_dir(cache_dir, "--cache-dir")
+    # One run per output folder: a second one would interleave report.json and the LAMMPS
+    # outputs of the first.  The flock dies with its holder, so a killed run never blocks.
+    with DirLock(out, what="output folder"):
+        return _run_chain_locked(scene, out, force=force, cache_dir=cache_dir, progress=progress, quiet=quiet,
+                                 figures=figures, on_stage=on_stage)
+
+
+def _run_chain_locked(scene, out, *, force, cache_dir, progress, quiet, figures, on_stage) -> ChainRun:
     from . import report as _report
     from .stages import STAGE_FUNCS, StageContext
 
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
     cache = StageCache(cache_dir if cache_dir is not None else out / "cache")
     plan = plan_scene(scene)
     forced = set(STAGES) if force is True else set(force or ())
@@ -219,7 +229,15 @@ def run_chain(
         if sp.name in forced:
             cache.discard(sp.name, key)
         hit = cache.lookup(sp.name, key)
+        entry_lock = None
+        if hit is None:
+            # Runs sharing a --cache-dir compute an entry once: wait for whoever holds it,
+            # then look again (it may have been committed meanwhile).
+            entry_lock = cache.entry_lock(sp.name, key, quiet=quiet).acquire()
+            hit = cache.lookup(sp.name, key)
         if hit is not None:
+            if entry_lock is not None:
+                entry_lock.release()
             run.entries[sp.name] = StageEntry(
                 sp.name, True, f"{sp.reason} (reused from cache {key})", 0.0, "cached", key, hit
             )
@@ -242,6 +260,7 @@ def run_chain(
         try:
             output = STAGE_FUNCS[sp.name](ctx)
         except KeyboardInterrupt as exc:
+            entry_lock.release()
             dt = time.perf_counter() - t0
             run.entries[sp.name] = StageEntry(
                 sp.name, False, "interrupted; partial work kept for resume", dt, "interrupted", key, error=exc
@@ -274,6 +293,7 @@ def run_chain(
             committed = cache.commit(sp.name, key, record)
             run.entries[sp.name] = StageEntry(sp.name, True, sp.reason, dt, "computed", key, committed)
             prog.finish(sp.name, "done", dt)
+        entry_lock.release()
         run.wall_time_s = time.perf_counter() - t_start
         _report.write_json(run, partial=True)
         if on_stage is not None:

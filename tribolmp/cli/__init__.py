@@ -95,6 +95,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     module = importlib.import_module(available[args.command][0])
     try:
         return int(module.run(args) or 0)
+    except BrokenPipeError:
+        # The reader went away (``tribolmp check --json | head``): stop quietly, as
+        # coreutils do, and keep Python from complaining again when it flushes stdout at exit.
+        import os
+
+        try:
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        except OSError:
+            pass
+        return 141
     except SetupError as exc:
         print(f"tribolmp {args.command}: {exc}", file=sys.stderr)
         return EXIT_SETUP
@@ -104,6 +114,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print(f"tribolmp {args.command}: interrupted; finished results and checkpoints are kept", file=sys.stderr)
         return 130
+    except OSError as exc:
+        # A file system failure while running (disk full, a folder made read-only meanwhile):
+        # a run failure, said in one line with the path; user-given paths are checked up front
+        # and exit 2 before this can happen.
+        where = f" ({exc.filename})" if getattr(exc, "filename", None) else ""
+        print(f"tribolmp {args.command}: {exc.strerror or exc}{where}", file=sys.stderr)
+        return EXIT_RUN
 
 
 def emit_json(obj: Any, stream=None) -> None:

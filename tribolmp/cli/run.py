@@ -7,6 +7,8 @@ scaled to run here).  Progress goes to stderr; ``report.md``, ``report.json``,
 
 from __future__ import annotations
 
+import sys
+
 HELP = "run a scene through the multiscale chain (default: the embedded scene)"
 
 STAGE_CHOICES = ("nanoscale", "topography", "contact", "lubrication", "macroscale", "tribospectroscopy", "all")
@@ -39,12 +41,13 @@ def _terminate_as_interrupt(signum, frame):  # pragma: no cover - exercised by a
 def run(args) -> int:
     """Plan and run the scene; print a summary; return 0 (failures raise one-line errors)."""
     import signal
-    from pathlib import Path
 
     from ..chain import plan_scene
     from ..chain.runner import run_chain
     from ..scene import default_scene, load_scene
     from . import emit_json
+
+    from ..locking import prepare_dir
 
     scene = load_scene(args.scene) if args.scene else default_scene()
     if args.plan:
@@ -55,12 +58,16 @@ def run(args) -> int:
             for s in plan.stages:
                 print(f"{s.name:18s} {'RUN ' if s.run else 'skip'}  {s.reason}")
         return 0
+    # Checked on the raw text (Path("") is ".", which would silently write into the working
+    # folder) and after the scene, so an invalid scene creates nothing.
+    if args.cache_dir is not None:
+        prepare_dir(args.cache_dir, "--cache-dir")
+    out = prepare_dir(args.out, "--out")
     force = set(args.force or ())
     force_arg = True if "all" in force else force
     # A kill (SIGTERM) unwinds like Ctrl-C, so the report records the interrupted stage;
     # committed stages are safe either way (atomic renames).
     signal.signal(signal.SIGTERM, _terminate_as_interrupt)
-    out = Path(args.out)
     chain = run_chain(
         scene,
         out,
@@ -74,10 +81,34 @@ def run(args) -> int:
 
         emit_json(json.loads((out / "report.json").read_text())["stages"])
     else:
-        ran = [e.name for e in chain.entries.values() if e.ran]
-        print(f"{scene.scene.name}: {len(ran)} stage(s) ran ({', '.join(ran)}) in {chain.wall_time_s:.1f} s")
-        for e in chain.entries.values():
-            if not e.ran:
-                print(f"  skipped {e.name}: {e.reason}")
+        print(summary_text(chain))
         print(f"report: {out / 'report.md'}  data: {out / 'report.json'}")
+    for line in stage_warnings(chain):
+        print(f"warning: {line}", file=sys.stderr)
     return 0
+
+
+def summary_text(chain) -> str:
+    """Which stages were computed, which came from the cache, which were skipped (several lines)."""
+    computed = [e.name for e in chain.entries.values() if e.status == "computed"]
+    cached = [e.name for e in chain.entries.values() if e.status == "cached"]
+    lines = [
+        f"{chain.scene.scene.name}: {len(computed)} stage(s) computed ({', '.join(computed) or 'none'}), "
+        f"{len(cached)} from the cache ({', '.join(cached) or 'none'}) in {chain.wall_time_s:.1f} s"
+    ]
+    lines += [f"  skipped {e.name}: {e.reason}" for e in chain.entries.values() if not e.ran]
+    return "\n".join(lines)
+
+
+def stage_warnings(chain) -> list[str]:
+    """The warnings a stage recorded (e.g. the nanoscale 'not steady'), prefixed by the stage name."""
+    out = []
+    for e in chain.entries.values():
+        if e.cached is None:
+            continue
+        values = e.cached.values
+        warns = list(values.get("warnings") or e.cached.record.get("warnings") or [])
+        if e.name == "nanoscale" and values.get("mu_steady") is False:
+            warns.insert(0, "friction coefficient is NOT steady: mu is the mean of the second half of the run")
+        out += [f"{e.name}: {w}" for w in warns]
+    return out

@@ -194,13 +194,18 @@ def load_scene(path: str | Path) -> Scene:
     except OSError as exc:
         raise SceneError("file", "a readable TOML file", f"{exc.strerror or exc}", name) from None
     try:
-        text = raw.decode("utf-8")
+        # utf-8-sig: editors on Windows write a byte-order mark, which TOML itself does not allow.
+        text = raw.decode("utf-8-sig")
     except UnicodeDecodeError:
         raise SceneError("file", "UTF-8 text", "undecodable bytes", name) from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise SceneError("file", "valid TOML", str(exc), name) from None
+    if not data:
+        # An empty file (or /dev/null, or a truncated copy) would otherwise run the defaults of
+        # every section silently, which is never what the user meant.
+        raise SceneError("file", "a scene with at least one [section]", "an empty file", name)
     return parse_scene(data, source=name)
 
 

@@ -1,0 +1,226 @@
+"""Issue 12: output folders, locks, one-line errors and honest summaries.
+
+Each test drives the real CLI (a subprocess, like a user) or the real chain,
+and each reproduces a failure of the code before issue 12 (named in the
+docstring), so it can fail.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import stat
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import pytest
+
+from tribolmp.locking import DirLock, FolderBusyError, prepare_dir
+from tribolmp.scene import scene_path
+
+RATES_GIVEN = str(scene_path("rates_given"))
+
+
+def cli(*args, cwd=None, timeout=120, stdin=None):
+    """Run ``python -m tribolmp ARGS``; return the CompletedProcess."""
+    return subprocess.run([sys.executable, "-m", "tribolmp", *map(str, args)], capture_output=True, text=True,
+                          cwd=cwd, timeout=timeout, stdin=stdin)
+
+
+def assert_one_line(proc, code):
+    """Exit ``code`` with exactly one line on stderr and no traceback."""
+    assert proc.returncode == code, (proc.returncode, proc.stderr)
+    lines = [ln for ln in proc.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1, proc.stderr
+    assert "Traceback" not in proc.stderr
+
+
+# --- bad output folders: before issue 12 these were FileExistsError/NotADirectoryError tracebacks,
+# or (--out "") a run written into the working folder.
+@pytest.mark.parametrize("kind", ["file", "under_file", "devnull", "empty", "cache_file"])
+def test_bad_output_folder_is_one_line_exit_2(tmp_path, kind):
+    afile = tmp_path / "afile"
+    afile.write_text("x")
+    args = {
+        "file": ["--out", afile],
+        "under_file": ["--out", afile / "sub"],
+        "devnull": ["--out", os.devnull],
+        "empty": ["--out", ""],
+        "cache_file": ["--out", tmp_path / "o", "--cache-dir", afile],
+    }[kind]
+    proc = cli("run", RATES_GIVEN, *args, "--quiet", cwd=tmp_path)
+    assert_one_line(proc, 2)
+    assert ("--cache-dir" if kind == "cache_file" else "--out") in proc.stderr
+    # nothing was written into the working folder (the "" case used to write report.md here)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["afile"]
+
+
+def test_prepare_dir_names_the_field(tmp_path):
+    f = tmp_path / "f"
+    f.write_text("")
+    with pytest.raises(Exception, match=r"^\[outputs\]\.dir: expected a folder"):
+        prepare_dir(f, "[outputs].dir")
+    assert prepare_dir(tmp_path / "a" / "b").is_dir()
+
+
+# --- locks
+HOLD = textwrap.dedent(
+    """
+    import sys, time
+    from tribolmp.locking import DirLock
+    lock = DirLock(sys.argv[1]).acquire()
+    print("locked", flush=True)
+    time.sleep(60)
+    """
+)
+
+
+@pytest.fixture
+def holder_of():
+    """Start processes that take a folder's lock; kill and reap them afterwards."""
+    procs = []
+
+    def start(folder):
+        proc = subprocess.Popen([sys.executable, "-c", HOLD, str(folder)], stdout=subprocess.PIPE, text=True)
+        procs.append(proc)
+        assert proc.stdout.readline().strip() == "locked"
+        return proc
+
+    yield start
+    for proc in procs:
+        proc.kill()
+        proc.wait()
+        proc.stdout.close()
+
+
+def test_second_run_into_a_held_folder_exits_2_naming_the_pid(tmp_path, holder_of):
+    """Before issue 12 two runs into one --out both ran and poisoned the folder."""
+    out = tmp_path / "out"
+    out.mkdir()
+    holder = holder_of(out)
+    proc = cli("run", RATES_GIVEN, "--out", out, "--quiet")
+    assert_one_line(proc, 2)
+    assert f"PID {holder.pid}" in proc.stderr
+    assert not (out / "report.json").exists()
+
+
+def test_lock_of_a_killed_process_is_taken_over(tmp_path, holder_of):
+    """SIGKILL leaves the lock file behind; the kernel has released the flock, so it is free."""
+    holder = holder_of(tmp_path)
+    with pytest.raises(FolderBusyError, match=str(holder.pid)):
+        DirLock(tmp_path).acquire()
+    holder.send_signal(signal.SIGKILL)
+    holder.wait()
+    assert (tmp_path / ".lock").exists()
+    with DirLock(tmp_path):
+        assert (tmp_path / ".lock").read_text().split()[0] == str(os.getpid())
+
+
+def test_waiting_lock_gets_it_when_the_holder_ends(tmp_path, holder_of):
+    holder = holder_of(tmp_path)
+    t0 = time.monotonic()
+    killer = subprocess.Popen(["sh", "-c", f"sleep 1; kill {holder.pid}"])
+    with DirLock(tmp_path, wait=True, timeout=30, quiet=True):
+        waited = time.monotonic() - t0
+    killer.wait()
+    assert waited >= 0.8  # it really waited for the holder, it did not just break the lock
+
+
+def test_two_runs_sharing_a_cache_compute_each_entry_once(tmp_path):
+    """Concurrent runs with one --cache-dir: one computes, the other reuses; both succeed."""
+    cache = tmp_path / "cache"
+    procs = [subprocess.Popen([sys.executable, "-m", "tribolmp", "run", RATES_GIVEN, "--out", str(tmp_path / f"o{i}"),
+                               "--cache-dir", str(cache), "--no-figures", "--json", "--quiet"],
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for i in range(2)]
+    outs = [p.communicate(timeout=300) for p in procs]
+    assert [p.returncode for p in procs] == [0, 0], [o[1] for o in outs]
+    statuses = []
+    for i in range(2):
+        report = json.loads((tmp_path / f"o{i}" / "report.json").read_text())
+        statuses.append({s["name"]: s["reason"] for s in report["stages"] if s["ran"]})
+    names = statuses[0].keys()
+    assert names == statuses[1].keys() and names
+    for name in names:
+        reused = ["reused from cache" in statuses[i][name] for i in range(2)]
+        assert reused.count(True) <= 1  # never both "fresh" results written over each other...
+    committed = [p for p in cache.iterdir() if p.is_dir()]
+    assert len(committed) == len(names)  # ...and exactly one committed entry per stage
+    assert not [p for p in cache.iterdir() if p.name.endswith(".partial")]
+
+
+# --- the cache never trusts a damaged hand-off file
+def test_truncated_cached_file_is_recomputed(tmp_path):
+    out = tmp_path / "o"
+    assert cli("run", RATES_GIVEN, "--out", out, "--quiet", "--no-figures").returncode == 0
+    report = json.loads((out / "report.json").read_text())
+    topo = next(p for p in (out / "cache").iterdir() if p.name.startswith("topography-") and p.is_dir())
+    files = json.loads((topo / "result.json").read_text())["files"]
+    victim = topo / sorted(files.values())[0]
+    victim.write_bytes(victim.read_bytes()[: victim.stat().st_size // 2])
+    proc = cli("run", RATES_GIVEN, "--out", out, "--no-figures")
+    assert proc.returncode == 0, proc.stderr
+    again = json.loads((out / "report.json").read_text())
+    topo_row = next(s for s in again["stages"] if s["name"] == "topography")
+    assert "reused from cache" not in topo_row["reason"]  # recomputed, not trusted
+    assert len(report["stages"]) == len(again["stages"])
+
+
+# --- the summary says what was computed and what came from the cache
+def test_cached_rerun_says_from_the_cache(tmp_path):
+    """Before issue 12 a fully cached rerun printed '4 stage(s) ran'."""
+    out = tmp_path / "o"
+    first = cli("run", RATES_GIVEN, "--out", out, "--quiet", "--no-figures")
+    second = cli("run", RATES_GIVEN, "--out", out, "--quiet", "--no-figures")
+    assert first.returncode == second.returncode == 0
+    assert "0 stage(s) computed" in second.stdout and "4 from the cache" in second.stdout
+    assert "4 stage(s) computed" in first.stdout
+
+
+# --- files readable by others (normal umask), not mkstemp's 0600
+def test_results_are_readable_by_others(tmp_path):
+    out = tmp_path / "o"
+    env = dict(os.environ)
+    proc = subprocess.run(["sh", "-c", f"umask 022 && {sys.executable} -m tribolmp run {RATES_GIVEN} --out {out} "
+                                       "--quiet --no-figures"], capture_output=True, text=True, env=env)
+    assert proc.returncode == 0, proc.stderr
+    for f in [out / "report.json", *(out / "cache").rglob("result.json")]:
+        assert f.stat().st_mode & stat.S_IROTH, f
+
+
+# --- scene files
+def test_empty_scene_file_is_refused(tmp_path):
+    """Before issue 12 an empty file (or /dev/null) ran the default of every section."""
+    empty = tmp_path / "s.toml"
+    empty.write_text("# nothing here\n")
+    assert_one_line(cli("check", empty), 2)
+    assert_one_line(cli("check", os.devnull), 2)
+
+
+def test_scene_with_byte_order_mark_is_read(tmp_path):
+    """Before issue 12 a UTF-8 BOM gave 'Invalid statement (at line 1, column 1)'."""
+    text = Path(RATES_GIVEN).read_text()
+    bom = tmp_path / "bom.toml"
+    bom.write_bytes(b"\xef\xbb\xbf" + text.encode())
+    proc = cli("check", bom)
+    assert proc.returncode == 0, proc.stderr
+
+
+# --- a closed pipe is not a traceback
+def test_closed_stdout_pipe_is_quiet():
+    """``tribolmp check --json | head`` raised BrokenPipeError before issue 12.
+
+    The read end is closed before the interpreter has even imported tribolmp,
+    so the JSON write always meets a closed pipe (no race with a fast reader).
+    """
+    proc = subprocess.Popen([sys.executable, "-m", "tribolmp", "check", RATES_GIVEN, "--json"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc.stdout.close()
+    err = proc.stderr.read()
+    proc.stderr.close()
+    proc.wait(timeout=60)
+    assert "Traceback" not in err and "BrokenPipe" not in err, err
+    assert proc.returncode == 141  # as a coreutils tool killed by SIGPIPE reports it
