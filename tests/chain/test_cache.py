@@ -59,9 +59,48 @@ def test_partial_workdir_is_reused_for_resume(tmp_path):
 
 
 def test_code_hash_is_stable_and_per_model():
-    from tribolmp.chain.planner import STAGES, code_hash
+    from tribolmp.chain.registry import REGISTRY
+    from tribolmp.chain.stage import code_hash
 
-    hashes = {s: code_hash(s) for s in STAGES}
-    assert hashes == {s: code_hash(s) for s in STAGES}
+    hashes = {s.name: code_hash(s) for s in REGISTRY}
+    assert hashes == {s.name: code_hash(s) for s in REGISTRY}
     # Different models read different sources, so their code identities differ.
-    assert len(set(hashes.values())) == len(STAGES)
+    assert len(set(hashes.values())) == len(REGISTRY)
+
+
+def test_code_closure_is_computed_from_the_imports():
+    # The closure is the import graph, not a hand-kept list: the foundations MODEL_SOURCES missed
+    # (scene fields, units, rng) are in, the lazily imported lubrication damper of the macroscale
+    # model is in, and no stage sees another stage's file or the registry.
+    from tribolmp.chain.registry import REGISTRY
+    from tribolmp.chain.stage import PACKAGE_ROOT, code_closure
+
+    rel = {s.name: {str(p.relative_to(PACKAGE_ROOT)) for p in code_closure(type(s).__module__, s.data)} for s in REGISTRY}
+    assert {"params.py", "scene/schema.py", "rng.py", "models/topography/spde.py"} <= rel["topography"]
+    assert any(p.startswith("models/lubrication/") for p in rel["macroscale"])
+    assert any(p.startswith("lammps/") for p in rel["nanoscale"])
+    assert any(p.startswith("analysis/") for p in rel["nanoscale"])
+    assert any(p.startswith("data/lammps_inputs/") for p in rel["nanoscale"])
+    for name, files in rel.items():
+        assert f"chain/stages/{name}.py" in files
+        others = {f"chain/stages/{o}.py" for o in rel if o != name}
+        assert not files & others, (name, files & others)
+        assert "chain/registry.py" not in files and "chain/planner.py" not in files and "chain/runner.py" not in files
+
+
+def test_code_hash_changes_with_an_imported_source(tmp_path, monkeypatch):
+    # A stage's key must change when any module it imports changes: the BEM solver's source,
+    # as read by the hash, gains a line.
+    from tribolmp.chain import stage as stage_mod
+    from tribolmp.chain.registry import REGISTRY
+
+    before = stage_mod.code_hash(REGISTRY["contact"])
+    target = stage_mod.PACKAGE_ROOT / "models" / "contact" / "bem.py"
+    real = type(target).read_bytes
+
+    def read_bytes(self):
+        data = real(self)
+        return data + b"# edited" if self == target else data
+
+    monkeypatch.setattr(type(target), "read_bytes", read_bytes)
+    assert stage_mod.code_hash(REGISTRY["contact"]) != before

@@ -11,27 +11,41 @@ import json
 
 import pytest
 
+from tribolmp.chain import planner as planner_mod
 from tribolmp.chain import runner as runner_mod
-from tribolmp.chain import stages as stages_mod
-from tribolmp.chain.stages import StageOutput
+from tribolmp.chain.registry import REGISTRY
+from tribolmp.chain.stage import StageOutput
 from tribolmp.errors import SetupError, StageError
 from tribolmp.scene import load_scene, scene_path
 
 
+def with_run(stage, fn):
+    """A copy of ``stage`` whose ``run`` is ``fn`` (same module, so the same code closure and key)."""
+    cls = type(stage)
+    return type(cls.__name__, (cls,), {"run": lambda self, ctx: fn(ctx), "__module__": cls.__module__})()
+
+
+def set_run(monkeypatch, name, fn):
+    """Replace stage ``name``'s computation in the registry the planner uses."""
+    monkeypatch.setattr(planner_mod, "REGISTRY", planner_mod.REGISTRY.replaced(name, with_run(REGISTRY[name], fn)))
+
+
 @pytest.fixture
 def calls(monkeypatch):
-    """Replace every stage function by a counter that writes one hand-off file."""
+    """Replace every stage's computation by a counter that writes one file per declared hand-off."""
     counts: dict[str, int] = {}
 
-    def make(name):
+    def make(stage):
         def fn(ctx):
-            counts[name] = counts.get(name, 0) + 1
-            (ctx.workdir / "out.txt").write_text(f"{name} {ctx.seed} {sorted(ctx.upstream)}")
-            return StageOutput(values={"calls": counts[name]}, units={"calls": "1"}, files={"out": "out.txt"})
+            counts[stage.name] = counts.get(stage.name, 0) + 1
+            (ctx.workdir / "out.txt").write_text(f"{stage.name} {ctx.seed} {sorted(ctx.upstream)}")
+            files = {"out": "out.txt", **{h.file: "out.txt" for h in stage.produces}}
+            return StageOutput(values={"calls": counts[stage.name]}, units={"calls": "1"}, files=files)
 
         return fn
 
-    monkeypatch.setattr(stages_mod, "STAGE_FUNCS", {n: make(n) for n in runner_mod.STAGES})
+    for stage in REGISTRY:
+        set_run(monkeypatch, stage.name, make(stage))
     return counts
 
 
@@ -50,7 +64,7 @@ def test_rerun_reuses_cache_and_force_recomputes(tmp_path, calls):
     assert ran == ["topography", "contact", "macroscale", "tribospectroscopy"]
     assert all(calls[n] == 1 for n in ran)
     rep = _report(out)
-    assert [r["name"] for r in rep["stages"]] == list(runner_mod.STAGES)
+    assert [r["name"] for r in rep["stages"]] == list(REGISTRY.names)
     assert all(set(r) == {"name", "ran", "reason", "time_s"} for r in rep["stages"])
     assert rep["complete"] is True
     # Downstream stages saw their upstream results.
@@ -84,7 +98,7 @@ def test_failing_stage_is_reported_and_others_kept(tmp_path, calls, monkeypatch)
     def boom(ctx):
         raise RuntimeError("solver diverged\nat step 7")
 
-    monkeypatch.setitem(stages_mod.STAGE_FUNCS, "contact", boom)
+    set_run(monkeypatch, "contact", boom)
     out = tmp_path / "run"
     with pytest.raises(StageError) as info:
         runner_mod.run_chain(_scene(), out, quiet=True, figures=False)
@@ -102,19 +116,19 @@ def test_setup_error_in_a_stage_maps_to_setup_error(tmp_path, calls, monkeypatch
     def bad(ctx):
         raise ParameterError("[contact].springs", "an integer >= 3", 1)
 
-    monkeypatch.setitem(stages_mod.STAGE_FUNCS, "contact", bad)
+    set_run(monkeypatch, "contact", bad)
     with pytest.raises(SetupError, match=r"stage 'contact' failed: \[contact\].springs"):
         runner_mod.run_chain(_scene(), tmp_path / "run", quiet=True, figures=False)
 
 
 def test_interrupt_keeps_finished_stages_and_resumes(tmp_path, calls, monkeypatch):
-    real_contact = stages_mod.STAGE_FUNCS["contact"]
+    real_contact = planner_mod.REGISTRY["contact"].run
 
     def interrupted(ctx):
         (ctx.workdir / "checkpoint").write_text("half done")
         raise KeyboardInterrupt
 
-    monkeypatch.setitem(stages_mod.STAGE_FUNCS, "contact", interrupted)
+    set_run(monkeypatch, "contact", interrupted)
     out = tmp_path / "run"
     with pytest.raises(KeyboardInterrupt):
         runner_mod.run_chain(_scene(), out, quiet=True, figures=False)
@@ -131,7 +145,7 @@ def test_interrupt_keeps_finished_stages_and_resumes(tmp_path, calls, monkeypatc
         seen["checkpoint"] = (ctx.workdir / "checkpoint").read_text()
         return real_contact(ctx)
 
-    monkeypatch.setitem(stages_mod.STAGE_FUNCS, "contact", resumed)
+    set_run(monkeypatch, "contact", resumed)
     run = runner_mod.run_chain(_scene(), out, quiet=True, figures=False)
     assert seen["checkpoint"] == "half done", "the rerun must find the interrupted stage's checkpoint"
     assert calls["topography"] == 1 and run.entries["topography"].status == "cached"

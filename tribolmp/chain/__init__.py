@@ -1,11 +1,14 @@
-"""The multiscale chain: planner, stage cache, stages and report.
+"""The multiscale chain: stages (one file each), their registry, planner, runner, cache and report.
 
 One scene goes through up to six stages, each scale feeding the next with
-explicit hand-off files in SI units::
+typed hand-off files in SI units::
 
-    nanoscale (LAMMPS MCA) --rates.json--> topography (Eq. 23) --height map-->
+    nanoscale (LAMMPS MCA) --rates--> topography (Eq. 23) --surface-->
     contact (MDR / BEM) --stiffness--> macroscale (stick-slip), tribospectroscopy (F^2(a));
     lubrication wherever the scene has a [lubricant].
+
+The stage contract is :mod:`tribolmp.chain.stage`; the order is
+:mod:`tribolmp.chain.registry`.
 
 >>> from tribolmp.scene import default_scene
 >>> from tribolmp.chain import plan_scene
@@ -14,12 +17,7 @@ explicit hand-off files in SI units::
 """
 
 from .planner import STAGES, Plan, StagePlan, choose_contact_method, plan_scene
+from .registry import REGISTRY, Registry
+from .runner import run_chain
 
-__all__ = ["STAGES", "Plan", "StagePlan", "plan_scene", "choose_contact_method", "run_chain"]
-
-
-def run_chain(*args, **kwargs):
-    """Run a scene through the chain; see :func:`tribolmp.chain.runner.run_chain`."""
-    from .runner import run_chain as _run
-
-    return _run(*args, **kwargs)
+__all__ = ["STAGES", "REGISTRY", "Registry", "Plan", "StagePlan", "plan_scene", "choose_contact_method", "run_chain"]

@@ -30,7 +30,9 @@ from ..errors import SetupError, StageError
 from ..locking import DirLock, prepare_dir
 from ..scene import Scene
 from .cache import CachedStage, StageCache, hash_inputs
-from .planner import STAGES, Plan, code_hash, plan_scene
+from .planner import Plan, plan_scene
+from .registry import Registry
+from .stage import StageContext, code_hash, stage_seed
 
 __all__ = ["run_chain", "ChainRun", "StageEntry", "Progress", "stage_seed"]
 
@@ -43,7 +45,7 @@ class StageEntry:
     ran: bool
     reason: str
     time_s: float = 0.0
-    status: str = "skipped"  # skipped | computed | cached | failed | unavailable | interrupted
+    status: str = "skipped"  # skipped | computed | cached | failed | interrupted
     key: str | None = None
     cached: CachedStage | None = None
     error: BaseException | None = None
@@ -127,11 +129,6 @@ class Progress:
         self._print(f"{self._bar(self.done / self.total)} {name}: {status} ({seconds:.1f} s; total {time.perf_counter() - self._t0:.1f} s)")
 
 
-def stage_seed(master: int, name: str) -> list[int]:
-    """Seed entropy of stage ``name``: independent streams derived from the scene's master seed."""
-    return [int(master), STAGES.index(name)]
-
-
 def _one_line(exc: BaseException) -> str:
     text = " ".join(str(exc).split()) or type(exc).__name__
     return text if isinstance(exc, (SetupError, StageError)) or ":" in text[:40] else f"{type(exc).__name__}: {text}"
@@ -147,6 +144,7 @@ def run_chain(
     quiet: bool = False,
     figures: bool | None = None,
     on_stage: Callable[[ChainRun], None] | None = None,
+    registry: Registry | None = None,
 ) -> ChainRun:
     """Run ``scene`` through the multiscale chain into ``out_dir``.
 
@@ -168,6 +166,8 @@ def run_chain(
         Draw PNG figures (default ``[outputs].figures``).
     on_stage : callable, optional
         Called with the :class:`ChainRun` after each stage (tests use it to interrupt).
+    registry : Registry, optional
+        The stages (default: :data:`~tribolmp.chain.registry.REGISTRY`).
 
     Returns
     -------
@@ -187,19 +187,19 @@ def run_chain(
     # outputs of the first.  The flock dies with its holder, so a killed run never blocks.
     with DirLock(out, what="output folder"):
         return _run_chain_locked(scene, out, force=force, cache_dir=cache_dir, progress=progress, quiet=quiet,
-                                 figures=figures, on_stage=on_stage)
+                                 figures=figures, on_stage=on_stage, registry=registry)
 
 
-def _run_chain_locked(scene, out, *, force, cache_dir, progress, quiet, figures, on_stage) -> ChainRun:
+def _run_chain_locked(scene, out, *, force, cache_dir, progress, quiet, figures, on_stage, registry) -> ChainRun:
     from . import report as _report
-    from .stages import STAGE_FUNCS, StageContext
 
-    cache = StageCache(cache_dir if cache_dir is not None else out / "cache")
-    plan = plan_scene(scene)
-    forced = set(STAGES) if force is True else set(force or ())
-    unknown = forced - set(STAGES)
+    plan = plan_scene(scene, registry=registry)
+    names = plan.registry.names
+    forced = set(names) if force is True else set(force or ())
+    unknown = forced - set(names)
     if unknown:
-        raise SetupError(f"--force: expected stage names from {list(STAGES)}, got {sorted(unknown)}")
+        raise SetupError(f"--force: expected stage names from {list(names)}, got {sorted(unknown)}")
+    cache = StageCache(cache_dir if cache_dir is not None else out / "cache")
     run = ChainRun(scene, plan, out)
     prog = progress or Progress(len(plan.running), quiet=quiet)
     scene_dict = scene.to_dict()
@@ -223,7 +223,7 @@ def _run_chain_locked(scene, out, *, force, cache_dir, progress, quiet, figures,
             # recomputed upstream stage invalidates everything downstream of it.
             "upstream": {n: f"{run.result(n).key}:{run.result(n).record.get('output_id', '')}" for n in sp.needs},
             "seed": seed,
-            "code": code_hash(sp.name, sp.options),
+            "code": code_hash(plan.registry[sp.name]),
         }
         key = cache.key(sp.name, inputs)
         if sp.name in forced:
@@ -258,7 +258,7 @@ def _run_chain_locked(scene, out, *, force, cache_dir, progress, quiet, figures,
         )
         t0 = time.perf_counter()
         try:
-            output = STAGE_FUNCS[sp.name](ctx)
+            output = plan.registry[sp.name].run(ctx)
         except KeyboardInterrupt as exc:
             entry_lock.release()
             dt = time.perf_counter() - t0

@@ -11,11 +11,12 @@ import sys
 
 HELP = "run a scene through the multiscale chain (default: the embedded scene)"
 
-STAGE_CHOICES = ("nanoscale", "topography", "contact", "lubrication", "macroscale", "tribospectroscopy", "all")
 
 
 def configure(parser) -> None:
-    """Add arguments."""
+    """Add arguments (the ``--force`` choices are the registry's stage names)."""
+    from ..chain.registry import STAGES
+
     parser.add_argument("scene", nargs="?", default=None, help="TOML scene file (default: the embedded steel-steel scene)")
     parser.add_argument("--out", default="tribolmp-run", help="output folder (default: ./tribolmp-run)")
     parser.add_argument(
@@ -23,7 +24,7 @@ def configure(parser) -> None:
         nargs="?",
         const="all",
         action="append",
-        choices=STAGE_CHOICES,
+        choices=(*STAGES, "all"),
         metavar="STAGE",
         help="recompute STAGE (repeatable) or, without a name, every stage, ignoring the cache",
     )

@@ -1,0 +1,190 @@
+"""Stage ``contact``: normal stiffness against load (MDR or BEM) of the rough or axisymmetric contact."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from ...environment import data_path
+from ...errors import SceneError
+from ..stage import Decision, Demand, Figure, Handoff, Stage, StageContext, StageOutput
+
+__all__ = ["STAGE", "speed_error_table", "choose_contact_method"]
+
+
+def speed_error_table() -> dict[str, Any] | None:
+    """The shipped measured speed-vs-error table of the contact solvers, or None if absent."""
+    try:
+        return json.loads(data_path("contact_speed_error.json").read_text())
+    except (OSError, ValueError):
+        return None
+
+
+def choose_contact_method(tolerance: float, table: dict[str, Any] | None, *,
+                          reduced_pressures: list[float] | None = None) -> dict[str, Any]:
+    """Pick the cheapest measured (method, mesh) whose error is within ``tolerance``.
+
+    The choice itself is physics (which solver is valid where) and lives in
+    :func:`tribolmp.models.contact.choice.choose_method`; see there for the
+    table format.  ``reduced_pressures`` (``p / (E* h'_rms)``) selects the
+    table rows of the pressure range the scene asks for.
+    """
+    from ...models.contact.choice import choose_method
+
+    return choose_method(tolerance, table, reduced_pressures=reduced_pressures)
+
+
+def _draw_stiffness(ax, result, run) -> None:
+    d = np.load(result.file("stiffness"))
+    p, med = d["pressure"], d["stiffness"]
+    ax.loglog(p, med, "o-", label="median")
+    if "q10" in d and "q90" in d:
+        ax.fill_between(p, d["q10"], d["q90"], alpha=0.3, label="q10-q90")
+    ax.set_xlabel("nominal pressure (Pa)")
+    ax.set_ylabel("normal stiffness (N/m)")
+    ax.legend()
+
+
+_SECTIONS = ("geometry", "material", "counter_material", "load", "contact")
+
+
+class Contact(Stage):
+    """Contact stiffness against nominal pressure: the evolved, given or random rough surface, or a profile."""
+
+    name = "contact"
+    produces = (
+        Handoff("stiffness", units={"pressure": "Pa", "force": "N", "stiffness": "N/m", "approach": "m",
+                                    "stiffness_q10": "N/m", "stiffness_q90": "N/m", "area_fraction": "1"},
+                doc="stiffness.npz: normal stiffness against nominal pressure (table also in the values)"),
+    )
+    consumes = ("surface",)
+    outputs = ("stiffness",)
+    sections = _SECTIONS + ("roughness",)
+    figures = (
+        Figure("stiffness", "stiffness", _draw_stiffness, "normal stiffness vs load",
+               "Normal contact stiffness against nominal pressure (median and q10-q90 of the ensemble)"),
+    )
+
+    def plan(self, scene, demand: Demand) -> Decision:
+        """Run when stiffness is requested or consumed; ``method = "auto"`` picks the solver from measured data."""
+        wanted = demand.requested("stiffness") or demand.wants("stiffness")
+        if not wanted:
+            return self.skip("no requested output needs contact stiffness")
+        rough = scene.geometry.profile == "rough"
+        if rough and scene.topography is None and scene.roughness is None:
+            raise SceneError("[roughness]", "a [roughness] or [topography] section for geometry.profile = 'rough'",
+                             "nothing", scene.source)
+        c = scene.contact
+        if c.method == "auto":
+            from ...models.contact.choice import reduced_pressures_of_scene
+
+            table = demand.overrides.get("contact_table")
+            choice = choose_contact_method(c.tolerance, speed_error_table() if table is None else table,
+                                           reduced_pressures=reduced_pressures_of_scene(scene))
+            method, mesh, why = choice["method"], choice["mesh"], "auto: " + choice["why"]
+        else:
+            choice = {}
+            method, mesh, why = c.method, None, f"method '{c.method}' set in [contact]"
+        purpose = "outputs request 'stiffness'" if demand.requested("stiffness") else "stiffness feeds macroscale"
+        options = {"method": method, "mesh": mesh,
+                   **{f"expected_{k}": choice.get(f"expected_{k}") for k in ("error", "time_s") if choice}}
+        return self.go(f"{method.upper()} on the {{surface}}; {why}; {purpose}",
+                       sections=_SECTIONS if not rough else _SECTIONS + ("roughness",),
+                       options=options, wants=("surface",) if rough else ())
+
+    def bind(self, scene, decision: Decision, supplied) -> Decision:
+        """Name the surface: evolved (topography supplies it), given height map, random, or axisymmetric."""
+        if scene.geometry.profile != "rough":
+            surface = f"axisymmetric {scene.geometry.profile}"
+        elif "surface" in supplied:
+            surface = "evolved surface from topography"
+        else:
+            surface = "given height map" if scene.roughness.surface_file else "random surface from [roughness]"
+        opts = dict(decision.options)
+        # keep the option order of the reports: method, mesh, surface, expected_*
+        options = {"method": opts.pop("method"), "mesh": opts.pop("mesh"), "surface": surface, **opts}
+        return replace(decision, reason=decision.reason.replace("{surface}", surface), options=options)
+
+    def run(self, ctx: StageContext) -> StageOutput:
+        """Normal stiffness against load: rough surface (evolved, given or generated) or axisymmetric profile."""
+        from ...models.contact.solve import (
+            load_surface,
+            rough_params_from_scene,
+            rough_surface,
+            solve_rough,
+        )
+
+        scene, opts = ctx.scene, ctx.plan.options
+        method = opts["method"]
+        if scene.geometry.profile != "rough":
+            return _contact_axisymmetric(ctx, method)
+        import dataclasses
+
+        params = rough_params_from_scene(scene)
+        surf_rng, ens_rng = ctx.rng.spawn(2)
+        mesh_note = ""
+        if ctx.handoff("surface") is not None:
+            h, dx = load_surface(ctx.handoff_file("surface"))
+            source = "evolved surface (topography stage)"
+            if opts.get("mesh") is not None:
+                mesh_note = f"mesh fixed by the evolved surface ({h.shape[0]} points), not the table's {opts['mesh']}"
+        else:
+            if opts.get("mesh") is not None and not params.surface_file and method == "bem":
+                # The measured table gives the BEM grid for this tolerance: same physical size L, new pixel.
+                L = params.grid_points * params.pixel_size
+                params = dataclasses.replace(params, grid_points=int(opts["mesh"]), pixel_size=L / int(opts["mesh"]))
+                mesh_note = f"BEM grid {opts['mesh']} from the speed-error table (L = {L:g} m)"
+            h, dx = rough_surface(params, surf_rng)
+            source = f"height map {params.surface_file}" if params.surface_file else "random surface from [roughness]"
+        res = solve_rough(
+            h, dx, params.modulus, params.pressures, method=method, periodic=params.periodic,
+            realizations=params.realizations, rng=ens_rng,
+        )
+        arrays = {k: np.asarray(res[k]) for k in ("pressure", "force", "stiffness", "approach", "stiffness_q10", "stiffness_q90", "area_fraction") if k in res}
+        np.savez(ctx.workdir / "stiffness.npz", q10=arrays.get("stiffness_q10", arrays["stiffness"]),
+                 q90=arrays.get("stiffness_q90", arrays["stiffness"]), **arrays)
+        values: dict[str, Any] = {k: v.tolist() for k, v in arrays.items()}
+        values.update(surface=source, grid=int(h.shape[0]), pixel_size_m=float(dx), surface_rms_m=float(np.std(h)),
+                      E_star_Pa=float(params.modulus), realizations=int(params.realizations) if method == "mdr" else None,
+                      periodic=bool(params.periodic) if method == "bem" else None)
+        if mesh_note:
+            values["mesh_note"] = mesh_note
+        if opts.get("expected_error") is not None:
+            values["expected_rel_error"] = opts["expected_error"]
+        units = {"pressure": "Pa", "force": "N", "stiffness": "N/m", "approach": "m", "stiffness_q10": "N/m",
+                 "stiffness_q90": "N/m", "area_fraction": "1", "pixel_size_m": "m", "surface_rms_m": "m", "E_star_Pa": "Pa",
+                 "expected_rel_error": "1"}
+        return StageOutput(values=values, units=units, files={"stiffness": "stiffness.npz"}, method=method,
+                           message=f"{method} on {source}, {h.shape[0]}x{h.shape[1]} grid", nit=int(res.get("nit", 0) or 0))
+
+
+def _contact_axisymmetric(ctx: StageContext, method: str) -> StageOutput:
+    """Axisymmetric indenter: force, contact radius and (MDR) stiffness at fractions of the scene's load."""
+    import dataclasses
+
+    from ...models.contact.solve import params_from_scene, solve
+
+    base = params_from_scene(ctx.scene)
+    if base.normal_force is None:
+        raise ValueError("[load].normal_force must be > 0 for a stiffness-vs-load curve of an axisymmetric contact")
+    loads = base.normal_force * np.geomspace(0.01, 1.0, 9)
+    rows = [solve(dataclasses.replace(base, normal_force=float(F)), method=method) for F in loads]
+    arrays = {"force": np.array([r.force for r in rows]), "contact_radius": np.array([r.contact_radius for r in rows]),
+              "indentation": np.array([r.indentation for r in rows])}
+    if all("stiffness" in r for r in rows):
+        arrays["stiffness"] = np.array([r.stiffness for r in rows])
+    # The figure's x axis is the nominal (mean contact) pressure F / (pi a^2).
+    arrays["pressure"] = arrays["force"] / (np.pi * arrays["contact_radius"] ** 2)
+    np.savez(ctx.workdir / "stiffness.npz", **arrays)
+    values: dict[str, Any] = {k: v.tolist() for k, v in arrays.items()}
+    values.update(profile=ctx.scene.geometry.profile, E_star_Pa=float(base.modulus), springs=int(rows[-1].get("springs", 0)) or None)
+    units = {"force": "N", "contact_radius": "m", "indentation": "m", "stiffness": "N/m", "pressure": "Pa", "E_star_Pa": "Pa"}
+    files = {"stiffness": "stiffness.npz"} if "stiffness" in arrays else {"contact_curve": "stiffness.npz"}
+    return StageOutput(values=values, units=units, files=files, method=method,
+                       message=f"{method} {ctx.scene.geometry.profile}, {len(loads)} loads up to {base.normal_force:g} N")
+
+
+STAGE = Contact()

@@ -1,0 +1,144 @@
+"""Stage ``nanoscale``: the LAMMPS movable-cellular-automata friction run -> ``rates.json``."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable
+from pathlib import Path
+
+from ...errors import SceneError
+from ...jsonio import scalars
+from ...records import Rates
+from ..stage import Decision, Demand, Figure, Handoff, Stage, StageContext, StageOutput
+
+#: The outputs this stage serves directly.
+_OUTPUTS = ("friction", "mca_snapshot", "rates")
+
+
+class _watch_progress:
+    """Report a LAMMPS run's progress from the simulated time in the last line of ``friction.csv``.
+
+    A daemon thread reads only the file's tail every ``interval`` s, so it costs
+    nothing measurable and never touches the LAMMPS session.
+    """
+
+    def __init__(self, path: Path, duration: float, report: Callable[..., None], interval: float = 2.0):
+        import threading
+
+        self.path, self.duration, self.report, self.interval = path, duration, report, interval
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+
+    def _last_time(self) -> float | None:
+        try:
+            with open(self.path, "rb") as fh:
+                fh.seek(0, 2)
+                fh.seek(max(0, fh.tell() - 256))
+                line = fh.read().decode(errors="ignore").strip().splitlines()[-1]
+            return float(line.split(",")[0])
+        except (OSError, ValueError, IndexError):
+            return None
+
+    def _run(self) -> None:
+        while not self._stop.wait(self.interval):
+            t = self._last_time()
+            if t is not None and self.duration > 0:
+                self.report(t / self.duration, f"simulated {t * 1e9:.2f} of {self.duration * 1e9:.2f} ns")
+
+    def __enter__(self):
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        self._stop.set()
+        self._thread.join(timeout=5)
+
+
+def _draw_snapshot(ax, result, run) -> None:
+    from ...analysis.plots import plot_snapshot
+
+    # true-size discs coloured by body, like the seed's Fig. 9
+    plot_snapshot(result.file("traj").parent, ax=ax)
+
+
+def _draw_mu(ax, result, run) -> None:
+    from ...analysis.plots import plot_friction
+
+    # marks the averaging window and says "not steady" when no steady state was detected
+    plot_friction(result.file("friction").parent, ax=ax)
+
+
+class Nanoscale(Stage):
+    """MCA on LAMMPS: measures the rates (friction coefficient, diffusion, transfer) of ``[nanoscale]``."""
+
+    name = "nanoscale"
+    produces = (Handoff("rates", units=Rates.units(), doc="rates.json: the shared Rates record (C1/C4) + diagnostics"),)
+    outputs = _OUTPUTS
+    sections = ("nanoscale", "material", "counter_material")
+    data = ("data/lammps_inputs",)
+    figures = (
+        Figure("mca_snapshot", "traj", _draw_snapshot, "MCA snapshot (cf. Fig. 9)",
+               "MCA snapshot at the end of the nanoscale run (cf. Fig. 9): automata coloured by body"),
+        Figure("mu_t", "friction", _draw_mu, "friction coefficient mu(t), nanoscale",
+               "Friction coefficient mu(t) = F_friction / F_normal of the nanoscale run"),
+    )
+
+    def plan(self, scene, demand: Demand) -> Decision:
+        """Run LAMMPS only with ``[nanoscale]``, when rates are requested or consumed downstream."""
+        req = demand.requested(*_OUTPUTS)
+        if "mca_snapshot" in req and scene.nanoscale is None:
+            raise SceneError("[nanoscale]", "a [nanoscale] section when outputs request 'mca_snapshot'", "nothing",
+                             scene.source)
+        consumers = demand.wants("rates")
+        if scene.rates is not None:
+            return self.skip("rates given in [rates]: LAMMPS not started", rates_source="scene")
+        if scene.nanoscale is None:
+            return self.skip("no [nanoscale] or [rates] section: friction coefficient from [load]", rates_source="load")
+        if not (req or consumers):
+            return self.skip("no requested output needs nanoscale rates", rates_source="none")
+        why = [f"outputs request {sorted(req)}"] if req else []
+        if consumers:
+            why.append(f"rates feed {', '.join(reversed(consumers))}")
+        return self.go(
+            "MCA on LAMMPS: " + "; ".join(why),
+            sections=self.sections,
+            options={"rates_source": "nanoscale", "preset": scene.nanoscale.preset, "ranks": scene.nanoscale.ranks},
+        )
+
+    def run(self, ctx: StageContext) -> StageOutput:
+        """LAMMPS MCA friction run -> ``rates.json`` (plus friction.csv, trajectory, meta.json)."""
+        from ...lammps import mca
+        from ...lammps.resume import run_mca_resuming
+        from ...rng import lammps_seed
+
+        params = mca.params_from_scene(ctx.scene)
+        out = ctx.workdir / "mca"
+        seed = lammps_seed(ctx.rng)
+        with _watch_progress(out / "friction.csv", params.duration, ctx.progress):
+            # An interrupted run left restart files in the (kept) partial folder: continue from them.
+            res, resume_info = run_mca_resuming(params, out, seed=seed, ranks=ctx.scene.nanoscale.ranks)
+        rates_path = out / "rates.json"
+        if not rates_path.exists():
+            raise RuntimeError(f"run_mca finished without writing {rates_path.name}")
+        rates = json.loads(rates_path.read_text())
+        meta = json.loads((out / "meta.json").read_text()) if (out / "meta.json").exists() else {}
+        values = scalars(rates)
+        values["meta"] = scalars(meta)
+        files = {"rates": "mca/rates.json"}
+        for key, name in (("friction", "friction.csv"), ("traj", "traj.lammpstrj"), ("meta", "meta.json"),
+                          ("log", "run.log"), ("profile", "profile.npz")):
+            if (out / name).exists():
+                files[key] = f"mca/{name}"
+        return StageOutput(
+            values=values,
+            units=dict(rates.get("units", {})),
+            files=files,
+            method=str(res.get("method", "mca")),
+            message=str(res.get("message", "")),
+            nit=int(res.get("nit", 0) or 0),
+            provenance={"lammps_seed_from": ctx.seed, **resume_info, "params": scalars(dict(vars(params))),
+                        "rates_provenance": rates.get("provenance", {}), "warnings": rates.get("warnings", [])},
+        )
+
+
+STAGE = Nanoscale()
