@@ -1,4 +1,4 @@
-"""Lubricated polishing: Preston's law, roughness decrease, mass balance, the lubricant's effect."""
+"""Lubricated polishing: roughness history against a particle-resolved simulation, mass balance, the film."""
 
 from __future__ import annotations
 
@@ -12,17 +12,41 @@ from tribolmp.scene import parse_scene
 BASE = dict(grid_points=32, steps=30, duration=6.0)
 
 
-def test_preston_law_over_a_decade_of_pressure_and_velocity():
-    rates = {}
-    for p in (1e5, 1e6):
-        for v in (0.1, 1.0):
-            res = polish(PolishParams(**BASE, pressure=p, velocity=v), rng=np.random.default_rng(7))
-            rates[p, v] = res.removal_rate / (p * v)
-            # squeeze-out takes t_s ~ 1e-6 s of a t_r = L/v >= 1e-3 s passage: rate within 0.1 % of k p v
-            assert res.removal_rate == pytest.approx(res.preston_rate, rel=1e-3)
-    k = np.array(list(rates.values()))
-    # the Preston coefficient is the same over both decades (stated tolerance 1 %)
-    assert np.ptp(k) / k.mean() < 0.01
+def _pair(eta, seed, **kw):
+    from tribolmp.models.lubrication.polishing import polish_resolved, self_affine_surface
+
+    p = PolishParams(grid_points=32, steps=6, duration=30.0, viscosity=eta, **kw)
+    h0 = self_affine_surface(32, p.pixel_size, p.rms_height, p.hurst, p.rolloff_wavelength, np.random.default_rng(seed))
+    return polish(p, rng=np.random.default_rng(seed + 10), h0=h0), polish_resolved(p, rng=np.random.default_rng(seed + 20), h0=h0)
+
+
+def test_roughness_evolution_matches_a_particle_resolved_simulation():
+    """Mean-field polishing against the particle-resolved simulation of the same step.
+
+    (Preston's law itself is no test here: with a thin film the Archard sum is
+    k v sum F = k p v A because the load balance is enforced; it holds by
+    construction in both models.)  The prediction is the roughness history:
+    Sq(t)/Sq(0) of the two models on the same initial map, different particle
+    draws, agrees to 0.2 % at every output step (measured, 32^2, 30 s, two maps;
+    Sq falls to 0.59-0.60).  The tolerance 1 % is 5x that; a 30 % error in the
+    pressure in the reference moves Sq by up to 15 % (measured), failing it.
+    """
+    for seed in (1, 2):
+        mf, ref = _pair(0.1, seed)
+        assert ref.sq[-1] < 0.7 * ref.sq[0]
+        assert np.max(np.abs(mf.sq / ref.sq - 1)) < 0.01
+
+
+def test_viscous_film_reduces_removal_and_the_mean_field_underestimates_it():
+    # eta 1e3 Pa s: the squeeze-out takes a share of each passage, the film carries part of
+    # the load and the removal falls below k p v in both models.  Measured removal/(k p v):
+    # mean field 0.334 / 0.360, particle-resolved 0.431 / 0.457 (two maps): the mean field's
+    # line-averaged load balance spreads the load over more, lighter contacts, whose
+    # squeeze-out takes longer, so it underestimates the removal by ~22 % (a stated limit).
+    for seed in (1, 2):
+        mf, ref = _pair(1e3, seed)
+        assert ref.removal_rate < 0.6 * ref.preston_rate
+        assert 0.70 < mf.removal_rate / ref.removal_rate < 0.85
 
 
 def test_roughness_decreases_and_mass_balances():
@@ -35,14 +59,6 @@ def test_roughness_decreases_and_mass_balances():
     assert res.mass_balance_error < 1e-9
     assert res.volume_change[-1] == pytest.approx(res.removed_volume[-1], rel=1e-9)
     assert res.load_error < 1e-8  # the pad's load balance is solved to round-off
-
-
-def test_viscous_film_breaks_preston():
-    # eta 1e3 Pa s: squeeze-out becomes comparable with the passage time, the film
-    # carries part of the load and removal falls below k p v by the mean contact fraction
-    res = polish(PolishParams(**BASE, viscosity=1e3), rng=np.random.default_rng(7))
-    assert res.removal_rate < 0.95 * res.preston_rate
-    assert res.removal_rate / res.preston_rate == pytest.approx(res.contact_fraction, rel=1e-9)
 
 
 def test_squeeze_out_time_is_the_pair_law_integral():

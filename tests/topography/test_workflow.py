@@ -30,7 +30,11 @@ def check_summary(out: Path, slope_sd: float):
     assert abs(f["slope_1d"] - f["slope_1d_theory_same_range"]) < slope_sd * f["slope_1d_err"]
     # Every log bin within 5 sampling sd of theory (~40 bins: P(any > 5 sd) < 1e-4 under the theory).
     assert f["max_logbin_deviation_sd"] < 5
-    assert f["low_plateau_m3"] / f["high_plateau_m3"] == pytest.approx((f["k2_1_per_m"] / f["k1_1_per_m"]) ** 2)
+    # The simulated high-k plateau against the analytic Dx l^2/D0: the theory over the same modes
+    # is within 4 % of the plateau, and the measured mean within 4 sampling sd (~0.2 %) of the theory.
+    # (This replaces low/high == (k2/k1)^2, an algebraic identity of the inputs.)
+    assert f["high_plateau_theory_same_modes_m3"] == pytest.approx(f["high_plateau_m3"], rel=0.04)
+    assert abs(f["high_plateau_measured_m3"] / f["high_plateau_theory_same_modes_m3"] - 1) < 4 * f["high_plateau_sampling_sd"]
     r = s["running_in"]
     # Both starts approach the stationary roughness (within 15 %: 8 replicas of a surface
     # whose Rq^2 is dominated by a few low-k modes).

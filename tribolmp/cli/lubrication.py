@@ -156,10 +156,11 @@ def _summary(args) -> int:
     stokes = res.get("error_damper_vs_stokes", [float("nan")] * len(res.gap))
     lines = [
         f"alpha = 6 pi eta R^2 = {res.alpha:.6g} N s (V = {res.velocity:.3g} m/s)",
-        "h/R        damper (N)    Reynolds (N)  vs Reynolds  vs Stokes (Brenner)",
+        "h/R        damper (N)    Reynolds (N)  Reynolds grid error  damper error vs Stokes (Brenner)",
     ]
     for e, fd, fr, er, es in zip(res.gap_over_radius, res.force_damper, res.force_reynolds, res.error_damper_vs_reynolds, stokes):
-        lines.append(f"{e:<10.3g} {fd:<13.6g} {fr:<13.6g} {er:+.2e}    " + (f"{es:+.2e}" if es == es else "n/a (power law)"))
+        lines.append(f"{e:<10.3g} {fd:<13.6g} {fr:<13.6g} {er:+.2e}            "
+                     + (f"{es:+.2e}" if es == es else "n/a (power law: no exact reference)"))
     _print(args, dict(res), "\n".join(lines))
     return 0
 

@@ -198,16 +198,18 @@ def euler_psd(k, steps, dt, *, d0, dx_noise, dz, mu, l, correlation_length=0.0, 
     return out
 
 
-def psd_consistency(ratios, *, bands: int = 8, alpha: float = 1e-3) -> Result:
+def psd_consistency(ratios, *, bands: int = 8, alpha: float = 1e-3, pooled: bool = True) -> Result:
     """Test periodogram/theory ratios of independent complex modes against sampling error.
 
     Under the hypothesis that every mode is a complex Gaussian with the
     predicted variance, each ratio ``I_k / E[I_k]`` is Exp(1) distributed, so
     the mean of the ``M`` ratios in a band is Gamma(M, 1/M) exactly.  The
     modes (last axis, ordered by |k|; leading axes are replicas) are split into
-    ``bands`` contiguous bands; each band gets a two-sided p-value and the
-    test fails when any p < alpha / bands (Bonferroni), so the false-alarm
-    rate of the whole test is at most ``alpha``.
+    ``bands`` contiguous bands; each band gets a two-sided p-value, and so
+    does the pooled mean of all ratios (``pooled=True``: the most powerful of
+    these tests against a bias common to all modes, e.g. a wrong amplitude).
+    The test fails when any p < alpha / (number of tests) (Bonferroni), so the
+    false-alarm rate of the whole test is at most ``alpha``.
 
     Parameters
     ----------
@@ -218,13 +220,15 @@ def psd_consistency(ratios, *, bands: int = 8, alpha: float = 1e-3) -> Result:
         Number of bands.
     alpha : float
         Family-wise false-alarm rate.
+    pooled : bool
+        Add the pooled test of all modes (default).
 
     Returns
     -------
     Result
         ``passed``, ``band_mean`` (per band), ``band_dof`` (ratios per band),
-        ``p_values``, ``p_min``, ``threshold`` (alpha / bands), ``rel_sigma``
-        (1/sqrt(dof) per band).
+        ``p_values`` (per band), ``p_min``, ``threshold`` (alpha / tests),
+        ``rel_sigma`` (1/sqrt(dof) per band), ``pooled_mean``, ``pooled_p``.
     """
     from scipy import stats
 
@@ -239,17 +243,25 @@ def psd_consistency(ratios, *, bands: int = 8, alpha: float = 1e-3) -> Result:
         means.append(mean)
         dofs.append(m)
         pvals.append(float(2 * min(cdf, 1 - cdf)))
-    threshold = alpha / bands
+    n_tests = bands + (1 if pooled else 0)
+    threshold = alpha / n_tests
+    m_all = r.size
+    pooled_mean = float(r.mean())
+    c_all = stats.gamma.cdf(pooled_mean, a=m_all, scale=1.0 / m_all)
+    pooled_p = float(2 * min(c_all, 1 - c_all))
+    p_all = min(pvals) if not pooled else min(min(pvals), pooled_p)
     return Result(
-        passed=bool(min(pvals) >= threshold),
+        passed=bool(p_all >= threshold),
+        pooled_mean=pooled_mean,
+        pooled_p=pooled_p if pooled else float("nan"),
         band_mean=np.array(means),
         band_dof=np.array(dofs),
         p_values=np.array(pvals),
-        p_min=float(min(pvals)),
+        p_min=float(p_all),
         threshold=threshold,
         rel_sigma=1.0 / np.sqrt(dofs),
         method="gamma_band_test",
-        message=f"min p = {min(pvals):.3g} vs threshold {threshold:.3g}",
+        message=f"min p = {p_all:.3g} vs threshold {threshold:.3g}",
     )
 
 
