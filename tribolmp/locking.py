@@ -25,7 +25,7 @@ from pathlib import Path
 
 from .errors import SetupError
 
-__all__ = ["prepare_dir", "DirLock", "FolderBusyError"]
+__all__ = ["DirLock", "FolderBusyError", "prepare_dir", "prepare_file"]
 
 
 class FolderBusyError(SetupError):
@@ -71,6 +71,34 @@ def prepare_dir(path: str | os.PathLike | None, field: str = "--out") -> Path:
         raise SetupError(f"{field}: cannot create folder {str(p)!r}: {exc.strerror or exc}") from None
     if not os.access(p, os.W_OK | os.X_OK):
         raise SetupError(f"{field}: expected a writable folder, got {str(p)!r} (permission denied)")
+    return p
+
+
+def prepare_file(path: str | os.PathLike | None, field: str) -> Path:
+    """Check that a file can be written at ``path`` (its folder is created) or raise one line.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file to be written later (a figure, a table).
+    field : str
+        The option it came from, used in the message.
+
+    Returns
+    -------
+    Path
+
+    Raises
+    ------
+    SetupError
+        Empty path, an existing folder, or a folder that cannot be created or written.
+    """
+    if path is None or not str(path).strip():
+        raise SetupError(f"{field}: expected a file path, got an empty string")
+    p = Path(path).expanduser()
+    if p.is_dir():
+        raise SetupError(f"{field}: expected a file path, got {str(p)!r}, which is a folder")
+    prepare_dir(p.parent, f"{field} (its folder)")
     return p
 
 

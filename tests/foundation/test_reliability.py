@@ -224,3 +224,47 @@ def test_closed_stdout_pipe_is_quiet():
     proc.wait(timeout=60)
     assert "Traceback" not in err and "BrokenPipe" not in err, err
     assert proc.returncode == 141  # as a coreutils tool killed by SIGPIPE reports it
+
+
+# --- bad numbers and absurd physics: one line, never a traceback, never a silent exit 0
+@pytest.mark.parametrize(
+    "args, code, field",
+    [
+        # ValueError traceback from numpy's SeedSequence before issue 12
+        (["contact", "rough", "--seed=-1", "--surface", "x.npy", "--modulus", "1e11", "--pressures", "1e6"], 2, "--seed"),
+        (["tribospec", "simulate", "--contact-stiffness", "0"], 2, "--contact-stiffness"),  # was "not given"
+        # a 1 m indentation of a 1 cm sphere gave a contact radius of 10 R with exit 0
+        (["contact", "axisymmetric", "--radius", "0.01", "--modulus", "1e11", "--indentation", "1"], 2, "indentation"),
+        # a 1e-30 m gap gave 1.9e21 N with exit 0
+        (["lubrication", "squeeze", "--radius", "1e-3", "--viscosity", "0.1", "--gap", "1e-30", "--velocity", "1e-3"],
+         2, "--gap"),
+        # the explicit scheme ended at a gap of -0.53 m with status -1 and exit 0
+        (["lubrication", "approach", "--radius", "1e-3", "--viscosity", "0.1", "--load", "10", "--gap", "1e-6",
+          "--duration", "1", "--steps", "10", "--scheme", "explicit", "--json"], 3, "explicit"),
+    ],
+)
+def test_absurd_input_is_one_line_with_the_right_exit_code(tmp_path, args, code, field):
+    proc = cli(*args, cwd=tmp_path)
+    assert_one_line(proc, code)
+    assert field in proc.stderr
+
+
+def test_plot_path_checked_before_the_fit(tmp_path):
+    """``tribospec fit --plot /nonexistent/x.png`` was a traceback after the whole bootstrap."""
+    afile = tmp_path / "f"
+    afile.write_text("")
+    data = tmp_path / "d.csv"
+    data.write_text("amplitude_m,force_N\n1e-9,1.0\n2e-9,0.9\n4e-9,0.7\n8e-9,0.5\n1.6e-8,0.3\n3.2e-8,0.2\n")
+    proc = cli("tribospec", "fit", data, "--plot", afile / "x.png", cwd=tmp_path)
+    assert_one_line(proc, 2)
+    assert "--plot" in proc.stderr
+
+
+def test_doubtful_sphere_contact_warns_but_runs(tmp_path):
+    """a/R = 0.45: Hertz's paraboloid is doubtful, not impossible: exit 0 with one warning line."""
+    proc = cli("contact", "axisymmetric", "--radius", "0.01", "--modulus", "1e11", "--indentation", "2e-3", "--json")
+    assert proc.returncode == 0
+    assert proc.stderr.count("warning:") == 1
+    assert json.loads(proc.stdout)["warnings"]
+    quiet = cli("contact", "axisymmetric", "--radius", "0.01", "--modulus", "1e11", "--indentation", "2e-6")
+    assert quiet.returncode == 0 and quiet.stderr == ""  # a/R = 0.014: no warning

@@ -25,7 +25,7 @@ from typing import Any, NoReturn
 from ..errors import EXIT_RUN, EXIT_SETUP, RunError, SetupError, TribolmpError
 from ..jsonio import dumps
 
-__all__ = ["main", "emit_json", "OneLineParser", "COMMANDS"]
+__all__ = ["COMMANDS", "OneLineParser", "emit_json", "float_list", "main", "seed_type"]
 
 #: command -> (module, one-line help).  A command is offered only if its module exists.
 COMMANDS: dict[str, tuple[str, str]] = {
@@ -126,6 +126,17 @@ def main(argv: Sequence[str] | None = None) -> int:
 def emit_json(obj: Any, stream=None) -> None:
     """Print ``obj`` as strict JSON (numpy types converted, NaN/inf as null)."""
     print(dumps(obj), file=stream or sys.stdout)
+
+
+def seed_type(text: str) -> int:
+    """argparse type: a random seed, an integer >= 0 (numpy's SeedSequence refuses negatives)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {value}")
+    return value
 
 
 def float_list(text: str) -> list[float]:

@@ -8,7 +8,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from . import emit_json, float_list
+from . import emit_json, float_list, seed_type
 
 HELP = "contact mechanics: MDR and half-space BEM"
 
@@ -43,7 +43,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     r.add_argument("--method", choices=("mdr", "bem"), default="mdr", help="MDR ensemble or 3D BEM (default mdr)")
     r.add_argument("--periodic", action="store_true", help="BEM: periodic cell (default: rigid rough square punch of side N*DX)")
     r.add_argument("--realizations", type=int, default=16, help="MDR ensemble size (default 16)")
-    r.add_argument("--seed", type=int, default=0, help="seed of the MDR ensemble (default 0)")
+    r.add_argument("--seed", type=seed_type, default=0, help="seed of the MDR ensemble (default 0)")
     r.add_argument("--json", action="store_true", help="print JSON (a list with one object per pressure)")
 
 
@@ -77,6 +77,10 @@ def _axisymmetric(args) -> int:
     for key in ("pull_off_force", "pull_off_force_displacement_control", "stiffness", "springs", "grid", "nit"):
         if key in res and (key != "nit" or res.method == "bem"):
             out[key] = res[key]
+    for line in res.get("warnings", []):
+        print(f"warning: {line}", file=sys.stderr)
+    if res.get("warnings"):
+        out["warnings"] = res["warnings"]
     if args.json:
         emit_json(out)
     else:

@@ -5,6 +5,8 @@ Only composes library calls from :mod:`tribolmp.models.lubrication`; no physics 
 
 from __future__ import annotations
 
+from . import seed_type
+
 HELP = "reduced lubrication forces and the Reynolds reference"
 
 
@@ -57,7 +59,7 @@ def configure(parser) -> None:
     po.add_argument("--out", required=True, help="output directory")
     po.add_argument("--steps", type=int, default=None, help="time steps (default 100)")
     po.add_argument("--grid-points", type=int, default=None, help="workpiece grid points per side")
-    po.add_argument("--seed", type=int, default=None, help="random seed (default: [scene].seed)")
+    po.add_argument("--seed", type=seed_type, default=None, help="random seed (default: [scene].seed)")
     po.add_argument("--no-plot", action="store_true", help="skip the PNG")
     po.add_argument("--json", action="store_true", help="machine-readable summary")
 
@@ -90,8 +92,11 @@ def _squeeze(args) -> int:
         reynolds_cells=args.cells,
         reynolds_domain=args.domain,
     )
+    warn = _gap_warnings(args.gap)
     res = reduced.squeeze_force(p, args.model)
     payload = {k: v for k, v in res.items() if k not in ("units",)}
+    if warn:
+        payload["warnings"] = warn
     payload["units"] = res.units
     _print(args, payload, f"squeeze force ({args.model}): {res.force:.6g} N  [{res.time_s * 1e3:.3g} ms]")
     return 0
@@ -101,16 +106,18 @@ def _sliding(args) -> int:
     from ..models.lubrication import reduced
 
     p = _params(args, velocity=0.0, sliding_velocity=args.velocity, length=args.length)
+    warn = _gap_warnings(args.gap)
     res = reduced.sliding_force(p, args.model)
-    _print(args, dict(res), f"sliding drag ({args.model}): {res.force:.6g} N")
+    _print(args, {**dict(res), **({"warnings": warn} if warn else {})}, f"sliding drag ({args.model}): {res.force:.6g} N")
     return 0
 
 
 def _pairlaw(args) -> int:
     from ..models.lubrication import pairlaw
 
+    warn = _gap_warnings(args.gap)
     res = pairlaw.sphere_plane_pair_force(args.radius, args.viscosity, args.gap, args.velocity, refine=args.refine)
-    _print(args, dict(res), f"pair-law force: {res.force:.6g} N (exact {res.exact:.6g} N, rel. error {res.rel_error:.2e})")
+    _print(args, {**dict(res), **({"warnings": warn} if warn else {})}, f"pair-law force: {res.force:.6g} N (exact {res.exact:.6g} N, rel. error {res.rel_error:.2e})")
     return 0
 
 
@@ -127,13 +134,32 @@ def _approach(args) -> int:
         model=args.model,
         power_law_index=args.power_law_index,
     )
+    warn = _gap_warnings(args.gap)
     res = dynamics.approach(p, scheme=args.scheme)
     _print(
         args,
-        dict(res),
+        {**dict(res), **({"warnings": warn} if warn else {})},
         f"h(t_end) = {res.h[-1]:.6g} m (exact {res.h_exact[-1]:.6g} m); min gap {res.min_gap:.3g} m; {res.message}",
     )
+    if res.status < 0:
+        # The data are printed (a user comparing schemes wants them), but a failed scheme is
+        # a failed run: exit 3, never 0.
+        from ..errors import BlowUpError
+
+        raise BlowUpError(f"scheme '{args.scheme}' failed: {res.message}")
     return 0
+
+
+def _gap_warnings(gap: float) -> list[str]:
+    """Refuse a gap below a molecular size; print (and return) the doubtful-continuum warning."""
+    import sys
+
+    from ..models.lubrication.validity import check_film_gap
+
+    warn = check_film_gap(gap, "--gap")
+    for line in warn:
+        print(f"warning: {line}", file=sys.stderr)
+    return warn
 
 
 def _load(scene_path, *, need_lubricant: bool):

@@ -9,6 +9,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from . import seed_type
+
 HELP = "movable cellular automata friction on LAMMPS"
 
 #: JSON fields printed by ``mca run --json`` (a contract checked by others).
@@ -48,7 +50,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     r.add_argument(
         "--np", type=int, default=1, help="MPI ranks (runs under the mpich wheel's mpiexec)"
     )
-    r.add_argument("--seed", type=int, help="seed (default: the scene's [scene].seed)")
+    r.add_argument("--seed", type=seed_type, help="seed (default: the scene's [scene].seed)")
     r.add_argument("--out", default="mca_run", help="output directory (default ./mca_run)")
     r.add_argument(
         "--resume", action="store_true", help="continue from the newest restart file in --out"

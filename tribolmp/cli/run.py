@@ -45,10 +45,9 @@ def run(args) -> int:
 
     from ..chain import plan_scene
     from ..chain.runner import run_chain
+    from ..locking import prepare_dir
     from ..scene import default_scene, load_scene
     from . import emit_json
-
-    from ..locking import prepare_dir
 
     scene = load_scene(args.scene) if args.scene else default_scene()
     if args.plan:

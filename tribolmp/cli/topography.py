@@ -17,6 +17,8 @@ PNG (map or profile and PSD) and the PSD as CSV into ``--out``.
 
 from __future__ import annotations
 
+from . import seed_type
+
 HELP = "stochastic surface evolution (Eq. 23); info on measured topography files"
 
 #: Default noise intensities: 1D in m^3/s; 2D in m^4/s (1D value x 10 nm, see run()).
@@ -42,7 +44,7 @@ def configure(parser) -> None:
     p.add_argument("--dt", type=float, default=1e-2, help="time step (s)")
     p.add_argument("--steps", type=int, default=100, help="number of steps")
     p.add_argument("--replicas", type=int, default=1, help="independent surfaces averaged in the PSD")
-    p.add_argument("--seed", type=int, default=None, help="random seed (default: fresh entropy)")
+    p.add_argument("--seed", type=seed_type, default=None, help="random seed (default: fresh entropy)")
     p.add_argument("--scheme", default="exact", help="exact (OU per Fourier mode) or euler (lattice reference)")
     p.add_argument("--operator", default="spectral", help="exact scheme: spectral (k^2) or lattice operator")
     p.add_argument("--precision", default="double", help="exact scheme: double or single")

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from . import seed_type
+
 HELP = "tribospectroscopy: simulate and fit F(amplitude)"
 
 
@@ -34,7 +36,7 @@ def configure(parser) -> None:
                      help="wild-bootstrap refits that widen the 68 %% interval (coverage then not tested)")
     fit.add_argument("--plot", default="tribospec_fit.png", help="PNG to write (default tribospec_fit.png)")
     fit.add_argument("--no-plot", action="store_true", help="do not write a figure")
-    fit.add_argument("--seed", type=int, default=0, help="seed of the bootstrap")
+    fit.add_argument("--seed", type=seed_type, default=0, help="seed of the bootstrap")
     fit.add_argument("--json", action="store_true", help="print JSON")
 
 
@@ -59,6 +61,10 @@ def _simulate(args) -> int:
     if args.correlation_length is not None:
         over["correlation_length"] = args.correlation_length
     if args.contact_stiffness is not None:
+        # 0 used to mean "not given" inside the model, so --contact-stiffness 0 silently took MDR.
+        if not args.contact_stiffness > 0:
+            raise ParameterError("--contact-stiffness", "a stiffness > 0 N/m (omit it to use the MDR stiffness)",
+                                 args.contact_stiffness)
         over["contact_stiffness"] = args.contact_stiffness
     if args.amplitudes is not None:
         if any(a < 0 for a in args.amplitudes):
@@ -102,6 +108,11 @@ def _simulate(args) -> int:
 def _fit(args) -> int:
     from ..models.tribospectroscopy import fit_length, read_curve_csv
 
+    if not args.no_plot:
+        from ..locking import prepare_file
+
+        # Checked before the fit, so a bad --plot never costs the bootstrap and then a traceback.
+        prepare_file(args.plot, "--plot")
     curve = read_curve_csv(args.data, args.convention)
     res = fit_length(curve, args.model, background=not args.no_background, noise=args.noise, weighting=args.weighting,
                      n_boot=args.bootstrap, rng=args.seed)

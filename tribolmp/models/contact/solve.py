@@ -282,7 +282,29 @@ def solve(params: AxisymmetricParams, *, method: str = "mdr", rng=None) -> Resul
     res = impl(params)
     res["time_s"] = time.perf_counter() - t0
     res.setdefault("params", params)
+    res["warnings"] = _validity_warnings(params, res)
     return res
+
+
+#: Above this a/R the paraboloid f = r^2/2R (Hertz, and the MDR sphere) departs from the real
+#: sphere by more than a few per cent in force; beyond a/R = 1 a sphere cannot make the contact.
+SPHERE_DOUBTFUL_A_OVER_R = 0.3
+
+
+def _validity_warnings(p: AxisymmetricParams, res: Result) -> list[str]:
+    """Refuse a contact the profile cannot make; list the doubtful ones (empty when fine)."""
+    if p.profile != "sphere":
+        return []
+    a = float(res.get("contact_radius", 0.0))
+    ratio = a / p.radius
+    where = "indentation" if p.indentation is not None else "normal_force"
+    if not math.isfinite(ratio) or ratio > 1.0:
+        raise ParameterError(where, f"a load whose contact radius stays below the sphere radius {p.radius:.3g} m",
+                             f"contact radius {a:.3g} m = {ratio:.3g} R")
+    if ratio > SPHERE_DOUBTFUL_A_OVER_R:
+        return [f"contact radius {a:.3g} m is {ratio:.2f} of the sphere radius: the paraboloid (small-strain) "
+                f"approximation is doubtful above a/R = {SPHERE_DOUBTFUL_A_OVER_R}"]
+    return []
 
 
 # ------------------------------------------------------------------- rough

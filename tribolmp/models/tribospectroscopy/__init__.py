@@ -12,6 +12,7 @@ amplitude ``dl/2 = 2a`` of the paper.  Characteristic lengths (``lambda``,
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -235,7 +236,11 @@ def tribospec_from_scene(scene, contact_stiffness: float | None = None, *, model
     """
     over = {"law": law}
     if contact_stiffness is not None:
-        over["contact_stiffness"] = float(contact_stiffness)
+        k = float(contact_stiffness)
+        if not (math.isfinite(k) and k > 0):
+            # A zero or non-finite stiffness from upstream is a failed contact stage, not "use MDR".
+            raise ParameterError("contact_stiffness", "a finite stiffness > 0 N/m from the contact model", k)
+        over["contact_stiffness"] = k
     if model is not None:
         over["model"] = model
     if amplitudes is not None:
