@@ -164,10 +164,10 @@ def _gap_warnings(gap: float) -> list[str]:
 
 def _load(scene_path, *, need_lubricant: bool):
     from ..errors import SceneError
-    from ..scene import load_scene, parse_scene
+    from ..scene import builtin_scene, load_scene
 
     if scene_path is None:
-        scene = parse_scene({"lubricant": {}, "polishing": {}, "roughness": {"grid_points": 64}}, source="<built-in>")
+        scene = builtin_scene("lubrication")
     else:
         scene = load_scene(scene_path)
     if need_lubricant and scene.lubricant is None:

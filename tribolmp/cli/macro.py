@@ -12,7 +12,7 @@ def configure(parser) -> None:
     ss.add_argument("scene", nargs="?", help="TOML scene file (default: the embedded scene)")
     ss.add_argument("--law", choices=("constant", "velocity-weakening"), default="constant", help="friction law")
     ss.add_argument("--mu-s", type=float, help="static coefficient (default: the scene's mu)")
-    ss.add_argument("--mu-k", type=float, help="kinetic coefficient (constant) or high-speed limit (velocity-weakening)")
+    ss.add_argument("--mu-k", type=float, help="kinetic coefficient (constant) or high-speed limit (velocity-weakening; default 0.75 mu_s)")
     ss.add_argument("--v-c", type=float, default=1e-3, help="velocity-weakening: characteristic speed in m/s")
     ss.add_argument("--friction-file", help="rates.json (mu) or mu(v) table (CSV/JSON: velocity_m_s, mu)")
     ss.add_argument("--contact", choices=("rigid", "mdr"), default="rigid", help="contact during stick")
@@ -70,17 +70,17 @@ def _profile_rng(scene):
 def _stick_slip(args, scene) -> dict:
     import numpy as np
 
-    from ..models.macro import make_friction_law, load_friction_law, stick_slip_from_scene
+    from ..models.friction import friction_coefficient
+    from ..models.macro import load_friction_law, make_friction_law, stick_slip_from_scene
 
-    mu0 = scene.rates.mu if scene.rates is not None else scene.load.friction_coefficient
+    mu0 = friction_coefficient(scene).mu
     if args.friction_file:
         law = load_friction_law(args.friction_file, mu_s=args.mu_s)
     elif args.law == "constant":
         law = make_friction_law("constant", mu_s=mu0 if args.mu_s is None else args.mu_s, mu_k=args.mu_k)
     else:
         mu_s = mu0 if args.mu_s is None else args.mu_s
-        law = make_friction_law("velocity-weakening", mu_s=mu_s, mu_d=0.75 * mu_s if args.mu_k is None else args.mu_k,
-                                v_c=args.v_c)
+        law = make_friction_law("velocity-weakening", mu_s=mu_s, mu_d=args.mu_k, v_c=args.v_c)
     over = {"unload_time": args.unload_time}
     if args.duration is not None:
         over["duration"] = args.duration

@@ -42,7 +42,7 @@ from .schema import (
     Tribospectroscopy,
 )
 
-__all__ = ["Scene", "load_scene", "parse_scene", "default_scene", "example_scenes", "scene_path"]
+__all__ = ["Scene", "load_scene", "parse_scene", "default_scene", "builtin_scene", "example_scenes", "scene_path", "BUILTIN_SCENES"]
 
 #: Sections every scene has (filled with defaults when absent).
 ALWAYS = ("scene", "material", "geometry", "load", "kinematics", "contact", "outputs")
@@ -224,3 +224,22 @@ def example_scenes() -> list[str]:
 def default_scene() -> Scene:
     """The embedded default scene: the seed's steel-steel couple, scaled to run here."""
     return load_scene(scene_path("default"))
+
+
+#: Scenes commands fall back on when the user gives none and the embedded default lacks the sections
+#: the command needs (tables as in a scene file; every other value is the schema default).
+BUILTIN_SCENES: dict[str, dict[str, Any]] = {
+    # `tribolmp lubrication summary|polish` without a scene: the schema's lubricant and polishing,
+    # on a 64-point roughness grid so that a polishing run takes a second.
+    "lubrication": {"lubricant": {}, "polishing": {}, "roughness": {"grid_points": 64}},
+}
+
+
+def builtin_scene(name: str) -> Scene:
+    """A built-in scene of :data:`BUILTIN_SCENES` (source ``<built-in>``)."""
+    try:
+        data = BUILTIN_SCENES[name]
+    except KeyError:
+        raise SceneError("scene", f"one of the built-in scenes {sorted(BUILTIN_SCENES)}", name) from None
+    return parse_scene({k: dict(v) for k, v in data.items()}, source="<built-in>")
+

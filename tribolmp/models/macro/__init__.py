@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...errors import ParameterError
+from ..friction import friction_coefficient
 from .contact import ContactSprings, profile_from_geometry
 from .friction import (
     FRICTION_LAWS,
@@ -39,7 +40,13 @@ from .multirate import (
     pulled_under_oscillation,
 )
 from .normal import SqueezeParams, squeeze_approach, squeeze_params_from_scene
-from .rigid_body import STICK_SLIP_METHODS, OscillationParams, StickSlipParams, oscillate, stick_slip
+from .rigid_body import (
+    STICK_SLIP_METHODS,
+    OscillationParams,
+    StickSlipParams,
+    oscillate,
+    stick_slip,
+)
 
 __all__ = [
     "StickSlipParams",
@@ -101,7 +108,7 @@ def contact_from_scene(scene, *, mu: float | None = None, n_springs: int | None 
     """
     geo = scene.geometry
     E, G = scene.effective_modulus, scene.effective_shear_modulus
-    mu = scene.load.friction_coefficient if mu is None else mu
+    mu = friction_coefficient(scene).mu if mu is None else mu
     if geo.profile == "rough" and (rng is None or scene.roughness is None):
         raise ParameterError("rng" if rng is None else "[roughness]",
                              "a numpy Generator to draw the rough MDR profile of [geometry].profile = 'rough'"
@@ -129,8 +136,9 @@ def stick_slip_from_scene(scene, mu: float | None = None, contact_law: str = "ri
     ----------
     scene : Scene
     mu : float, optional
-        Friction coefficient (constant law); default ``[rates].mu`` if the
-        scene has it, else ``[load].friction_coefficient``.  Ignored if ``law`` is given.
+        Friction coefficient (constant law); default
+        :func:`tribolmp.models.friction.friction_coefficient` of the scene
+        (``[rates].mu``, else ``[load].friction_coefficient``).  Ignored if ``law`` is given.
     contact_law : {"rigid", "mdr"}
         Rigid contact during stick, or the MDR tangential stiffness of the
         sticking springs (load dependent, so it vanishes with the load).
@@ -160,7 +168,7 @@ def stick_slip_from_scene(scene, mu: float | None = None, contact_law: str = "ri
         raise ParameterError("contact_law", "one of ['rigid', 'mdr']", contact_law)
     if law is None:
         if mu is None:
-            mu = scene.rates.mu if getattr(scene, "rates", None) is not None else scene.load.friction_coefficient
+            mu = friction_coefficient(scene).mu
         law = ConstantFriction(mu)
     kc = None
     if contact_stiffness is not None:

@@ -193,10 +193,11 @@ def params_from_scene(scene, **overrides) -> TribospecParams:
     passed) and the effective moduli.  Keyword ``overrides`` replace fields.
     """
     from ...scene.schema import Tribospectroscopy
+    from ..friction import friction_coefficient
 
     ts = scene.tribospectroscopy or Tribospectroscopy()
     geo = scene.geometry
-    mu = scene.rates.mu if getattr(scene, "rates", None) is not None else scene.load.friction_coefficient
+    mu = friction_coefficient(scene).mu  # the one decision of mu (nanoscale/[rates]/[load])
     amps = tuple(float(v) for v in to_per_contact(np.asarray(ts.amplitudes, float), ts.convention))
     kw = dict(
         amplitudes=amps,
