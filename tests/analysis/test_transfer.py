@@ -6,8 +6,17 @@ import numpy as np
 import pytest
 
 from tribolmp.analysis.outputs import open_trajectory, read_meta
-from tribolmp.analysis.transfer import STATE_LAYER, STATE_LOWER, STATE_UPPER, BondTurnover, MassTransfer, count_events
 from tribolmp.analysis.synthetic import make_transfer
+from tribolmp.analysis.transfer import (
+    STATE_LAYER,
+    STATE_LOWER,
+    STATE_UPPER,
+    BondTurnover,
+    MassTransfer,
+    count_events,
+    counting_rate,
+    persistent_membership,
+)
 
 
 @pytest.fixture(scope="module")
@@ -28,18 +37,33 @@ def test_links_broken_and_formed_exactly(scripted):
     assert r.broken_per_s == pytest.approx(exp["broken_total"] / span)
 
 
-def test_transfer_detachment_reattachment_exactly(scripted):
+def test_transfer_and_wear_exactly(scripted):
     meta, u, exp = scripted
     r = MassTransfer(u, meta, window=1).run().results
-    for key in ("transfer_events", "detach_events", "reattach_events", "returned_events", "n_surface"):
+    # default persistence: the slider moves 2 d = 5 nm, 5 frames at 1 nm/frame
+    assert r.persistence_frames == 5
+    for key in ("transfer_events", "detach_events", "return_events", "n_surface", "net_transfer_lower_to_upper",
+                "wear_lower", "wear_upper"):
         assert r[key] == exp[key], key
     # noise-free motion: rates are exact up to round-off of the float32 positions
-    for key in ("sliding_distance_m", "transfer_rate", "net_transfer_rate", "detachment_rate",
-                "reattachment_rate", "wear_rate"):
+    for key in ("span_s", "sliding_distance_m", "transfer_per_s", "transfer_per_s_err", "transfer_per_m",
+                "transfer_rate", "wear_lower_per_s", "wear_lower_per_s_err", "wear_upper_per_m",
+                "wear_upper_per_m_err"):
         assert r[key] == pytest.approx(exp[key], rel=1e-4), key
     assert r.crossed_lower_up[-1] == exp["crossed_lower_up"]
     assert r.crossed_upper_down[-1] == exp["crossed_upper_down"]
     assert r.crossed_lower_up[0] == 0
+
+
+def test_short_visits_are_not_transfer(scripted):
+    meta, u, exp = scripted
+    # with no persistence every instantaneous flip counts: the 3 two-frame flickers to the upper body
+    # become 3 transfers and 3 returns -- what the velocity-state count of the old analysis reported
+    r1 = MassTransfer(u, meta, window=1, persistence_s=0.0).run().results
+    assert r1.transfer_events == exp["transfer_events"] + exp["flicker_events"]
+    assert r1.return_events == exp["return_events"] + exp["flicker_events"]
+    r5 = MassTransfer(u, meta, window=1).run().results
+    assert r5.transfer_events == exp["transfer_events"]
 
 
 def test_default_window_keeps_events(scripted):
@@ -49,6 +73,26 @@ def test_default_window_keeps_events(scripted):
     # transfers are permanent, so they are still counted exactly
     assert r.window == 3
     assert r.transfer_events == exp["transfer_events"]
+
+
+def test_persistent_membership_by_hand():
+    L, M, U = STATE_LOWER, STATE_LAYER, STATE_UPPER
+    states = np.array([[L, U], [U, U], [U, L], [L, L], [U, L], [U, L], [U, L]])
+    own = np.array([L, U])
+    mem = persistent_membership(states, own, 3)
+    # automaton 0: the 2-frame visit to U is ignored; the 3-frame run from frame 4 is accepted at frame 4
+    np.testing.assert_array_equal(mem[:, 0], [L, L, L, L, U, U, U])
+    # automaton 1: its run of L from frame 2 lasts 5 frames: member of the lower body from frame 2
+    np.testing.assert_array_equal(mem[:, 1], [U, U, L, L, L, L, L])
+    # a run still shorter than the persistence at the end is not (yet) a change
+    mem2 = persistent_membership(np.array([[L], [L], [M], [M]]), np.array([L]), 3)
+    np.testing.assert_array_equal(mem2[:, 0], [L, L, L, L])
+
+
+def test_counting_rate_errors():
+    assert counting_rate(16, 2.0) == (8.0, 2.0)
+    # nothing counted: the error is one event per exposure, not 0
+    assert counting_rate(0, 4.0) == (0.0, 0.25)
 
 
 def test_count_events_by_hand():

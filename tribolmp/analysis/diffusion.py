@@ -76,6 +76,14 @@ class LateralDiffusion(FromOutput, AnalysisBase):
         the upper).
     fit_range : (float, float)
         Lag times used in the fit, as fractions of the analysed time span.
+    exponent_range : (float, float)
+        The MSD is diffusive when its log-slope over the fit window lies in
+        this range (default 0.8-1.2) *and* the rms displacement at the end
+        of the window exceeds one automaton diameter; otherwise
+        ``diffusion_m2_s`` is NaN (``rates.json``: null) and
+        ``diffusion_reason`` says why.  A slope near 2 is ballistic motion or
+        shear dispersion (automata carried at different velocities by the
+        sheared layer), which a linear fit would turn into a spurious D.
 
     Attributes
     ----------
@@ -86,14 +94,17 @@ class LateralDiffusion(FromOutput, AnalysisBase):
     msd_lower_m2, msd_upper_m2
         Per-body MSDs (m^2).
     diffusion_m2_s, diffusion_err_m2_s
-        D (m^2/s) and half the difference of D fitted on the two halves of
-        the run (a stationarity-aware error bar).
+        D (m^2/s; NaN unless ``diffusive``) and half the difference of D
+        fitted on the two halves of the run (a stationarity-aware error bar).
+    diffusive, diffusion_reason, msd_exponent, rms_displacement_m, fit_window_s
+        The regime test and its inputs; ``diffusion_fit_m2_s`` is the linear
+        fit whatever the regime (diagnostic only).
     diffusion_lower_m2_s, diffusion_upper_m2_s
     n_surface, lateral_dims
     """
 
     def __init__(self, universe, meta: MCAMeta, *, surface_depth_m=None, reference="group",
-                 fit_range=(0.0, 0.25), **kwargs):
+                 fit_range=(0.0, 0.25), exponent_range=(0.8, 1.2), **kwargs):
         super().__init__(universe.trajectory, **kwargs)
         self._meta = meta
         depth = 2 * meta.automaton_diameter_m if surface_depth_m is None else surface_depth_m
@@ -107,6 +118,10 @@ class LateralDiffusion(FromOutput, AnalysisBase):
         if not lo < hi:
             raise ParameterError("fit_range", "lo < hi in [0, 1]", fit_range)
         self._fit_range = (float(lo), float(hi))
+        a_lo, a_hi = exponent_range
+        if not (0 < a_lo < 1 < a_hi):
+            raise ParameterError("exponent_range", "lo < 1 < hi, lo > 0", exponent_range)
+        self._alpha_range = (float(a_lo), float(a_hi))
         self._lat = list(meta.lateral_axes)
 
     def _prepare(self):
@@ -168,14 +183,27 @@ class LateralDiffusion(FromOutput, AnalysisBase):
         return msd * NM**2, n
 
     def _fit(self, lag, msd):
+        use = self._window(lag)
+        slope, _, _ = linear_fit(lag[use], msd[use])
+        return slope / (2 * len(self._lat))
+
+    def _window(self, lag):
         lo, hi = self._fit_range
         span = lag[-1] if lag.size else 0.0
         use = (lag > 0) & (lag >= lo * span) & (lag <= hi * span)
         if use.sum() < 2:
             use = lag > 0
             use &= np.cumsum(use) <= 2
-        slope, _, _ = linear_fit(lag[use], msd[use])
-        return slope / (2 * len(self._lat))
+        return use
+
+    def _regime(self, lag, msd):
+        """(log-slope of MSD against lag over the fit window, rms displacement at its end (m), window (s))."""
+        use = self._window(lag) & (msd > 0)
+        if use.sum() < 2:
+            return float("nan"), float("nan"), [float("nan"), float("nan")]
+        alpha, _, _ = linear_fit(np.log(lag[use]), np.log(msd[use]))
+        last = np.nonzero(use)[0][-1]
+        return float(alpha), float(np.sqrt(msd[last])), [float(lag[use][0]), float(lag[last])]
 
     def _conclude(self):
         r = self.results
@@ -196,11 +224,26 @@ class LateralDiffusion(FromOutput, AnalysisBase):
             ml, _ = self._msd(MOL_LOWER, sl)
             mu, _ = self._msd(MOL_UPPER, sl)
             halves.append(self._fit(lag_h, (ml * n_l + mu * n_u) / (n_l + n_u)))
+        alpha, rms, window = self._regime(lag, msd_all)
+        d = self._meta.automaton_diameter_m
+        reasons = []
+        if not (np.isfinite(alpha) and self._alpha_range[0] <= alpha <= self._alpha_range[1]):
+            reasons.append(f"MSD grows as t^{alpha:.2f} over the fit window (diffusion needs an exponent in "
+                           f"[{self._alpha_range[0]:g}, {self._alpha_range[1]:g}]; > 1.2: ballistic or shear dispersion)")
+        if not rms > d:
+            reasons.append(f"rms displacement {rms:.3g} m at the end of the fit window is below one automaton "
+                           f"diameter {d:.3g} m (no escape from the cage)")
         r.lag_s = lag
         r.msd_m2 = msd_all
         r.msd_lower_m2 = out["lower"][0]
         r.msd_upper_m2 = out["upper"][0]
-        r.diffusion_m2_s = float(D)
+        r.msd_exponent = float(alpha)
+        r.rms_displacement_m = float(rms)
+        r.fit_window_s = window
+        r.diffusive = not reasons
+        r.diffusion_reason = "; ".join(reasons)
+        r.diffusion_fit_m2_s = float(D)
+        r.diffusion_m2_s = float(D) if r.diffusive else float("nan")
         r.diffusion_err_m2_s = float(abs(halves[0] - halves[1]) / 2)
         r.diffusion_lower_m2_s = float(self._fit(lag, out["lower"][0]))
         r.diffusion_upper_m2_s = float(self._fit(lag, out["upper"][0]))

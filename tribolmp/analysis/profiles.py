@@ -90,12 +90,15 @@ def interface_height(heights, mols) -> float:
 class _HeightBinned:
     """Mixin: bins along the normal, fixed from the reference frame."""
 
-    def _setup_bins(self, meta: MCAMeta, bin_width_m: float | None, reference_frame: int) -> None:
+    def _setup_bins(self, meta: MCAMeta, bin_width_m: float | None, reference_frame: int,
+                    column_width_m: float | None = None) -> None:
         self._meta = meta
         self._axis = meta.normal_axis
         w = meta.automaton_diameter_m if bin_width_m is None else bin_width_m
         self._bin_nm = check_range("bin_width_m", w, 0.0, None, lo_open=True, unit="m") / NM
         self._ref = int(reference_frame)
+        cw = 2 * meta.automaton_diameter_m if column_width_m is None else column_width_m
+        self._col_target_nm = check_range("column_width_m", cw, 0.0, None, lo_open=True, unit="m") / NM
 
     def _prepare_bins(self) -> None:
         traj = self._trajectory
@@ -108,12 +111,23 @@ class _HeightBinned:
         self._nb = self._edges.size - 1
         mols = ts.data["mol"].astype(int)
         self._mols = mols
+        self._L_nm = float(ts.dimensions[0])
+        self._ncol = max(1, int(round(self._L_nm / self._col_target_nm)))
         self._y0_nm = interface_height(h, mols)
         if not np.isfinite(self._y0_nm):
             raise DataFileError("trajectory: mol: expected lower (1, 2) and upper (3, 4) bodies stacked along the normal")
 
     def _bin_index(self, h) -> np.ndarray:
         return np.clip(np.floor((h - self._edges[0]) / self._bin_nm).astype(int), 0, self._nb - 1)
+
+    def _col_bin_index(self, x, h) -> np.ndarray:
+        """Flat index column * n_bins + height bin (columns of equal width along the periodic x)."""
+        col = np.clip(np.floor(np.mod(x, self._L_nm) / (self._L_nm / self._ncol)).astype(int), 0, self._ncol - 1)
+        return col * self._nb + self._bin_index(h)
+
+    @property
+    def _column_width_m(self) -> float:
+        return self._L_nm / self._ncol * NM
 
     @property
     def _centres_m(self) -> np.ndarray:
@@ -159,12 +173,17 @@ class VelocityProfile(_HeightBinned, FromOutput, AnalysisBase):
         slip moved to the driver or the base.
     interface_height_m, reference_velocity_m_s
     window_time_s, window_layer_depth_m, window_layer_offset_m
+    column_width_m, column_layer_depth_m, layer_depth_columns_m, layer_depth_columns_err_m
+        The same 10-90 % width in each x column of ``column_width_m``
+        (default 2 d), and its mean over the columns with the standard error
+        of that mean: a wavy slip line is sharp in every column, while the
+        x-averaged ``layer_depth_m`` turns its waviness into an apparent layer.
     """
 
     def __init__(self, universe, meta: MCAMeta, *, bin_width_m=None, velocity_reference="slider",
-                 reference_frame=0, n_windows=5, **kwargs):
+                 reference_frame=0, n_windows=5, column_width_m=None, **kwargs):
         super().__init__(universe.trajectory, **kwargs)
-        self._setup_bins(meta, bin_width_m, reference_frame)
+        self._setup_bins(meta, bin_width_m, reference_frame, column_width_m)
         if velocity_reference not in ("slider", "meta"):
             raise ParameterError("velocity_reference", "one of ['slider', 'meta']", velocity_reference)
         self._vref = velocity_reference
@@ -175,6 +194,8 @@ class VelocityProfile(_HeightBinned, FromOutput, AnalysisBase):
         n = self.n_frames
         self._sum = np.zeros((n, self._nb))
         self._cnt = np.zeros((n, self._nb))
+        self._csum = np.zeros(self._ncol * self._nb)
+        self._ccnt = np.zeros(self._ncol * self._nb)
         self._vslider = np.full(n, np.nan)
         self._time = np.zeros(n)
 
@@ -186,6 +207,9 @@ class VelocityProfile(_HeightBinned, FromOutput, AnalysisBase):
         b = self._bin_index(h)
         self._sum[i] = np.bincount(b, vx, self._nb)
         self._cnt[i] = np.bincount(b, None, self._nb)
+        cb = self._col_bin_index(ts.positions[:, 0].astype(float), h)
+        self._csum += np.bincount(cb, vx, self._ncol * self._nb)
+        self._ccnt += np.bincount(cb, None, self._ncol * self._nb)
         slider = ts.data["mol"].astype(int) == MOL_SLIDER
         if slider.any():
             self._vslider[i] = vx[slider].mean()
@@ -237,8 +261,26 @@ class VelocityProfile(_HeightBinned, FromOutput, AnalysisBase):
         r.window_time_s = np.asarray(wt)
         r.window_layer_depth_m = np.asarray(wd)
         r.window_layer_offset_m = np.asarray(wo)
+        # per x column: a wavy slip line is sharp in every column, while the x-averaged profile above
+        # turns its waviness into an apparent layer
+        cs = self._csum.reshape(self._ncol, self._nb)
+        cc = self._ccnt.reshape(self._ncol, self._nb)
+        cols = []
+        for j in range(self._ncol):
+            vj = np.where(cc[j] > 0, cs[j] / np.maximum(cc[j], 1), np.nan)
+            cols.append(self._layer(vj, cc[j], vref))
+        cols = np.asarray(cols)
+        r.column_width_m = self._column_width_m
+        r.column_layer_depth_m = cols[:, 0]
+        r.column_layer_center_m = 0.5 * (cols[:, 1] + cols[:, 2])
+        ok = np.isfinite(cols[:, 0])
+        r.columns_resolved = int(ok.sum())
+        r.layer_depth_columns_m = float(cols[ok, 0].mean()) if ok.any() else float("nan")
+        r.layer_depth_columns_err_m = float(cols[ok, 0].std(ddof=1) / np.sqrt(ok.sum())) if ok.sum() > 1 else float("nan")
         r.units = {"heights_m": "m", "vx_m_s": "m/s", "layer_depth_m": "m", "layer_offset_m": "m",
-                   "interface_height_m": "m", "reference_velocity_m_s": "m/s", "time_s": "s"}
+                   "interface_height_m": "m", "reference_velocity_m_s": "m/s", "time_s": "s",
+                   "column_width_m": "m", "column_layer_depth_m": "m", "layer_depth_columns_m": "m",
+                   "layer_depth_columns_err_m": "m"}
 
 class CompositionProfile(_HeightBinned, FromOutput, AnalysisBase):
     """Fraction of upper-body automata per height: mixing and penetration.
@@ -276,12 +318,20 @@ class CompositionProfile(_HeightBinned, FromOutput, AnalysisBase):
         Depth (m) that each body reached into the other, at ``threshold``.
     interface_height_m
     window_time_s, window_mixed_width_m
+    mixed_width_frame0_m, mixed_width_excess_m
+        Width of the reference frame (the initial roughness, before any
+        mixing) and ``mixed_width_m`` minus it.
+    column_width_m, column_mixed_width_m, column_mixed_width_frame0_m
+    mixed_width_columns_m, mixed_width_columns_err_m
+        Per x column: the mixed width minus the same column's frame-0 width,
+        averaged over the columns (standard error of the mean): neither the
+        initial roughness nor a wavy interface counts as mixing.
     """
 
     def __init__(self, universe, meta: MCAMeta, *, bin_width_m=None, threshold=0.05,
-                 reference_frame=0, n_windows=5, **kwargs):
+                 reference_frame=0, n_windows=5, column_width_m=None, **kwargs):
         super().__init__(universe.trajectory, **kwargs)
-        self._setup_bins(meta, bin_width_m, reference_frame)
+        self._setup_bins(meta, bin_width_m, reference_frame, column_width_m)
         self._thr = check_range("threshold", threshold, 0.0, 0.5, lo_open=True, hi_open=True)
         self._n_windows = int(n_windows)
 
@@ -290,7 +340,19 @@ class CompositionProfile(_HeightBinned, FromOutput, AnalysisBase):
         n = self.n_frames
         self._up = np.zeros((n, self._nb))
         self._all = np.zeros((n, self._nb))
+        self._cup = np.zeros(self._ncol * self._nb)
+        self._call = np.zeros(self._ncol * self._nb)
         self._time = np.zeros(n)
+        # frame 0 (the reference): the initial roughness, before any mixing, in the same columns
+        ts = self._trajectory[self._ref]
+        h0 = ts.positions[:, self._axis].astype(float)
+        up0 = np.isin(ts.data["mol"].astype(int), (MOL_UPPER, MOL_SLIDER))
+        cb0 = self._col_bin_index(ts.positions[:, 0].astype(float), h0)
+        self._cup0 = np.bincount(cb0[up0], None, self._ncol * self._nb)
+        self._call0 = np.bincount(cb0, None, self._ncol * self._nb)
+        b0 = self._bin_index(h0)
+        self._up0 = np.bincount(b0[up0], None, self._nb)
+        self._all0 = np.bincount(b0, None, self._nb)
 
     def _single_frame(self):
         ts = self._ts
@@ -301,7 +363,19 @@ class CompositionProfile(_HeightBinned, FromOutput, AnalysisBase):
         up = np.isin(mol, (MOL_UPPER, MOL_SLIDER))
         self._up[i] = np.bincount(b[up], None, self._nb)
         self._all[i] = np.bincount(b, None, self._nb)
+        cb = self._col_bin_index(ts.positions[:, 0].astype(float), h)
+        self._cup += np.bincount(cb[up], None, self._ncol * self._nb)
+        self._call += np.bincount(cb, None, self._ncol * self._nb)
         self._time[i] = ts.time * 1e-12
+
+    def _width(self, up, al) -> float:
+        """10-90 % width (m) of the isotonic fit of one upper-fraction profile (counts per bin)."""
+        keep = al > 0
+        if keep.sum() < 2:
+            return float("nan")
+        fit = isotonic_fit(up[keep] / al[keep], al[keep])
+        a, b = crossing_heights(self._centres_m[keep], fit, [0.1, 0.9])
+        return float(b - a)
 
     def _fit(self, sl):
         up, al = self._up[sl].sum(axis=0), self._all[sl].sum(axis=0)
@@ -333,5 +407,25 @@ class CompositionProfile(_HeightBinned, FromOutput, AnalysisBase):
             ww.append(b - a)
         r.window_time_s = np.asarray(wt)
         r.window_mixed_width_m = np.asarray(ww)
+        # the initial roughness: frame 0's width (x-averaged: the roughness itself; per column: only the
+        # discretisation floor of a sharp step), subtracted from the mixed widths
+        r.mixed_width_frame0_m = self._width(self._up0, self._all0)
+        r.mixed_width_excess_m = r.mixed_width_m - r.mixed_width_frame0_m
+        cu = self._cup.reshape(self._ncol, self._nb)
+        ca = self._call.reshape(self._ncol, self._nb)
+        cu0 = self._cup0.reshape(self._ncol, self._nb)
+        ca0 = self._call0.reshape(self._ncol, self._nb)
+        wc = np.array([self._width(cu[j], ca[j]) for j in range(self._ncol)])
+        w0 = np.array([self._width(cu0[j], ca0[j]) for j in range(self._ncol)])
+        r.column_width_m = self._column_width_m
+        r.column_mixed_width_m = wc
+        r.column_mixed_width_frame0_m = w0
+        ex = wc - w0
+        ok = np.isfinite(ex)
+        r.columns_resolved = int(ok.sum())
+        r.mixed_width_columns_m = float(ex[ok].mean()) if ok.any() else float("nan")
+        r.mixed_width_columns_err_m = float(ex[ok].std(ddof=1) / np.sqrt(ok.sum())) if ok.sum() > 1 else float("nan")
         r.units = {"heights_m": "m", "upper_fraction": "1", "mixed_width_m": "m", "penetration_upper_m": "m",
-                   "penetration_lower_m": "m", "interface_height_m": "m", "time_s": "s"}
+                   "penetration_lower_m": "m", "interface_height_m": "m", "time_s": "s",
+                   "mixed_width_frame0_m": "m", "mixed_width_excess_m": "m", "column_width_m": "m",
+                   "mixed_width_columns_m": "m", "mixed_width_columns_err_m": "m"}

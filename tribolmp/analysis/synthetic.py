@@ -118,7 +118,7 @@ def _box(L, H, dim, depth=None):
 
 def make_shear_mixing(out_dir, rng, *, n_atoms=3000, n_frames=8, velocity=10.0, diameter=2.5e-9,
                       height=40e-9, length=40e-9, interface=20e-9, sigma_v=3e-9, offset_v=1e-9,
-                      sigma_c=2e-9, noise=0.05) -> dict:
+                      sigma_c=2e-9, noise=0.05, wave_amplitude=0.0, roughness_amplitude=0.0) -> dict:
     """Shear and mixing with error-function profiles of known width.
 
     Frame 0 is unmixed: lower body below ``interface``, upper above.  In the
@@ -126,6 +126,12 @@ def make_shear_mixing(out_dir, rng, *, n_atoms=3000, n_frames=8, velocity=10.0, 
     plus Gaussian noise (``noise * V``), and an automaton is upper-body with
     probability Phi((y - y0)/sigma_c).  The bottom and top 2.5 nm are base
     and slider.  Lengths in m.
+
+    ``wave_amplitude`` > 0 makes the slip and mixing planes wavy in the
+    later frames, ``y0 + A sin(2 pi x / L)`` (a wavy slip line: an x-averaged
+    profile turns it into an apparent layer ~2A wide, a per-column profile
+    does not).  ``roughness_amplitude`` > 0 makes the frame-0 interface wavy
+    in the same way (the initial roughness, present before any mixing).
 
     Returns
     -------
@@ -144,11 +150,13 @@ def make_shear_mixing(out_dir, rng, *, n_atoms=3000, n_frames=8, velocity=10.0, 
         y = rng.uniform(0.0, H, n_atoms)
         x = rng.uniform(0.0, L, n_atoms)
         if k == 0:
-            upper = y >= y0
+            yc = y0 + roughness_amplitude / nm * np.sin(2 * np.pi * x / L)
+            upper = y >= yc
             vx = np.where(upper, velocity, 0.0)
         else:
-            upper = rng.random(n_atoms) < ndtr((y - y0) / (sigma_c / nm))
-            vx = velocity * ndtr((y - y0 - offset_v / nm) / (sigma_v / nm))
+            yc = y0 + wave_amplitude / nm * np.sin(2 * np.pi * x / L)
+            upper = rng.random(n_atoms) < ndtr((y - yc) / (sigma_c / nm))
+            vx = velocity * ndtr((y - yc - offset_v / nm) / (sigma_v / nm))
             vx = vx + noise * velocity * rng.standard_normal(n_atoms)
         mol = np.where(upper, MOL_UPPER, MOL_LOWER)
         mol[y < edge] = MOL_BASE
@@ -172,7 +180,7 @@ def make_shear_mixing(out_dir, rng, *, n_atoms=3000, n_frames=8, velocity=10.0, 
 
 
 def make_walkers(out_dir, rng, *, diffusion=2e-9, n_walkers=200, n_frames=60, velocity=20.0, dim=2,
-                 length=30e-9, diameter=2.5e-9, interval=1e-10) -> dict:
+                 length=30e-9, diameter=2.5e-9, interval=1e-10, shear_velocity_sd=0.0) -> dict:
     """Surface automata doing Brownian motion of known D on top of their body's motion.
 
     Each body has ``n_walkers`` surface automata (within one diameter of the
@@ -181,6 +189,11 @@ def make_walkers(out_dir, rng, *, diffusion=2e-9, n_walkers=200, n_frames=60, ve
     automata also slide at ``velocity`` along x, so they cross the periodic
     boundary many times.  Bulk rows, base and slider move rigidly with their
     body.  Heights do not change.
+
+    ``shear_velocity_sd`` (m/s) > 0 gives every walker, in addition, a
+    constant velocity along x drawn from N(0, sd): the shear dispersion of
+    automata carried at different speeds by a sheared layer.  Their MSD then
+    grows as t^2 once ``sd^2 t^2`` exceeds ``2 D t`` (not diffusion).
 
     Returns
     -------
@@ -211,6 +224,9 @@ def make_walkers(out_dir, rng, *, diffusion=2e-9, n_walkers=200, n_frames=60, ve
     D = diffusion / nm**2 * 1e-9  # nm^2/ns
     dt_ns = interval / 1e-9
     disp = np.zeros((n, 3))
+    drift = np.zeros(n)
+    if shear_velocity_sd > 0:
+        drift[walk] = rng.normal(0.0, shear_velocity_sd, int(walk.sum()))  # m/s = nm/ns
     frames = []
     every = 2000
     box = _box(L, H, dim)
@@ -223,6 +239,7 @@ def make_walkers(out_dir, rng, *, diffusion=2e-9, n_walkers=200, n_frames=60, ve
                 steps[:, 2] = 0.0
             disp += steps
         pos = x0 + disp
+        pos[:, 0] += drift * dt_ns * k
         pos[moving, 0] += velocity * dt_ns * k
         pos[:, 1] = h
         if dim == 2:
@@ -241,6 +258,7 @@ def make_walkers(out_dir, rng, *, diffusion=2e-9, n_walkers=200, n_frames=60, ve
 
 def make_transfer(out_dir, rng, *, n_per_row=20, n_frames=40, velocity=10.0, interval=1e-10, diameter=2.5e-9,
                   n_transfer_up=3, n_transfer_down=2, n_layer=4, t_transfer=10, t_detach=15, t_reattach=25,
+                  n_flicker=3, t_flicker=30, flicker_frames=2,
                   bond_events=((5, 3, 2), (12, 4, 0), (20, 0, 5))) -> dict:
     """Scripted transfer, detachment/reattachment and link changes with exact answers.
 
@@ -250,7 +268,10 @@ def make_transfer(out_dir, rng, *, n_per_row=20, n_frames=40, velocity=10.0, int
     upper body (and sit just above the interface), ``n_transfer_down``
     upper-surface automata stop with the lower body (just below it).  From
     ``t_detach`` to ``t_reattach`` ``n_layer`` other lower-surface automata
-    move at V/2 (the layer), then return to the lower body.  ``bond_events``
+    move at V/2 (the layer), then return to the lower body.  From
+    ``t_flicker`` on, ``n_flicker`` further lower-surface automata move with
+    the upper body for only ``flicker_frames`` intervals (shorter than the
+    default persistence of 5 frames: not a transfer).  ``bond_events``
     lists ``(interval, broken, formed)``: in interval ``k -> k+1`` that many
     links break and form between disjoint automata, so ``c_nbond`` changes
     reveal them exactly.  Motion is noise-free, so a window of one frame
@@ -278,6 +299,7 @@ def make_transfer(out_dir, rng, *, n_per_row=20, n_frames=40, velocity=10.0, int
     pick = rng.permutation(lower_surface)
     up_ids = pick[:n_transfer_up]
     layer_ids = pick[n_transfer_up:n_transfer_up + n_layer]
+    flicker_ids = pick[n_transfer_up + n_layer:n_transfer_up + n_layer + n_flicker]
     down_ids = rng.permutation(upper_surface)[:n_transfer_down]
     dt_ns = interval / 1e-9
     step_v = np.zeros((n_frames, n))  # velocity during interval k -> k+1
@@ -285,6 +307,7 @@ def make_transfer(out_dir, rng, *, n_per_row=20, n_frames=40, velocity=10.0, int
     step_v[t_transfer:, up_ids] = velocity
     step_v[t_transfer:, down_ids] = 0.0
     step_v[t_detach:t_reattach, layer_ids] = velocity / 2
+    step_v[t_flicker:t_flicker + flicker_frames, flicker_ids] = velocity
     xs = np.vstack([np.zeros(n), np.cumsum(step_v[:-1] * dt_ns, axis=0)]) + x0
     nbond = np.full(n, 4)
     nb_frames = []
@@ -319,24 +342,31 @@ def make_transfer(out_dir, rng, *, n_per_row=20, n_frames=40, velocity=10.0, int
     distance = velocity * span
     n_surface = 2 * n_per_row  # surface rows are within 2 d of the interface, bulk rows are not
     n_tr = n_transfer_up + n_transfer_down
-    layer_frames = t_reattach - t_detach  # classified frames whose interval has V/2
-    layer_pop = n_layer * layer_frames / (n_frames - w)
+    lower_out, lower_in = n_transfer_up + n_layer, n_transfer_down + n_layer
+    upper_out, upper_in = n_transfer_down, n_transfer_up
     return {
         "broken_total": expected_broken,
         "formed_total": expected_formed,
         "transfer_events": n_tr,
         "detach_events": n_tr + n_layer,
-        "reattach_events": n_tr + n_layer,
-        "returned_events": n_layer,
+        "return_events": n_layer,
+        "flicker_events": int(flicker_ids.size) if t_flicker + flicker_frames < n_frames else 0,
         "crossed_lower_up": n_transfer_up,
         "crossed_upper_down": n_transfer_down,
         "n_surface": n_surface,
+        "span_s": span,
         "sliding_distance_m": distance,
+        "transfer_per_s": n_tr / span,
+        "transfer_per_s_err": math.sqrt(n_tr) / span,
+        "transfer_per_m": n_tr / distance,
         "transfer_rate": n_tr / (n_surface * distance),
-        "net_transfer_rate": (n_transfer_up - n_transfer_down) / (n_surface * distance),
-        "detachment_rate": (n_tr + n_layer) / (n_surface * span),
-        "reattachment_rate": (n_tr + n_layer) / (layer_pop * span),
-        "wear_rate": n_tr / (n_surface * span),
+        "net_transfer_lower_to_upper": n_transfer_up - n_transfer_down,
+        "wear_lower": n_transfer_up - n_transfer_down,
+        "wear_upper": n_transfer_down - n_transfer_up,
+        "wear_lower_per_s": (n_transfer_up - n_transfer_down) / span,
+        "wear_lower_per_s_err": math.sqrt(lower_out + lower_in) / span,
+        "wear_upper_per_m": (n_transfer_down - n_transfer_up) / distance,
+        "wear_upper_per_m_err": math.sqrt(upper_out + upper_in) / distance,
         "velocity_m_s": velocity,
     }
 

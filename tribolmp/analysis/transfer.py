@@ -13,13 +13,24 @@ bounds, tighter for more frequent dumps.
 :class:`MassTransfer` classifies each automaton of the two bodies, frame by
 frame, by the body it moves with: its lateral velocity, averaged over a
 window, relative to the slider's velocity V over the same window, is
-*lower* (< V/3), *layer* (V/3 ... 2V/3) or *upper* (> 2V/3).  A lower-body
-automaton that ends up moving with the upper body has been transferred (and
-vice versa).  From the state changes:
+*lower* (< V/3), *layer* (V/3 ... 2V/3) or *upper* (> 2V/3).  A state is
+only a change of *membership* when it persists: an automaton's membership
+changes to a new state at the first frame of a run of that state lasting at
+least the persistence time (default: the time the slider takes to move two
+automaton diameters).  Vibrations, a passing asperity or the washboard of two
+lattices flip the instantaneous state for a few frames; they are not
+transfer.  From the membership changes:
 
-* detachment: an automaton leaves the body it moved with;
-* reattachment: an automaton joins a body (from the layer or the other body);
-* transfer: an automaton joins the *other* body.
+* transfer: an automaton becomes a member of the *other* body (directly or
+  through the layer);
+* detachment: it stops being a member of its own body; return: it becomes a
+  member of its own body again;
+* wear: the net loss of each body's material, N_members(start) -
+  N_members(end), with its counting error sqrt(n_out + n_in) (Poisson; the
+  one-event resolution 1 when nothing was counted).
+
+Rates are counts per unit time and per unit sliding distance, with counting
+(Poisson) errors sqrt(n).  None is derived from another by an identity.
 
 It also counts automata that crossed the original interface (position-based
 mixing, independent of the velocity classification).
@@ -38,7 +49,8 @@ from .diffusion import Unwrapper, surface_selection
 from .outputs import MOL_LOWER, MOL_SLIDER, MOL_UPPER, NM, FromOutput, MCAMeta
 from .profiles import interface_height
 
-__all__ = ["BondTurnover", "MassTransfer", "STATE_LOWER", "STATE_LAYER", "STATE_UPPER", "count_events"]
+__all__ = ["BondTurnover", "MassTransfer", "STATE_LOWER", "STATE_LAYER", "STATE_UPPER", "count_events",
+           "persistent_membership", "counting_rate"]
 
 #: Velocity states of an automaton.
 STATE_LOWER, STATE_LAYER, STATE_UPPER = 0, 1, 2
@@ -138,8 +150,53 @@ def count_events(states: np.ndarray, own: np.ndarray) -> dict[str, np.ndarray]:
     }
 
 
+def persistent_membership(states: np.ndarray, own: np.ndarray, persistence: int) -> np.ndarray:
+    """Membership of each automaton: the state of its latest run lasting >= ``persistence`` frames.
+
+    Parameters
+    ----------
+    states : ndarray of int, shape (T, N)
+        Instantaneous states per frame.
+    own : ndarray of int, shape (N,)
+        Initial membership (each automaton's own body).
+    persistence : int
+        Frames a state must hold, uninterrupted, to become the membership.
+        A run still going at the last frame counts only if it already lasted
+        that long (a change must have *persisted*, not merely begun).
+
+    Returns
+    -------
+    ndarray of int, shape (T, N)
+        Membership per frame; it changes at the first frame of a persistent run.
+    """
+    states = np.asarray(states)
+    T, N = states.shape
+    P = max(1, int(persistence))
+    run = np.ones((T, N), dtype=np.int64)  # length of the run of equal states starting at t
+    for t in range(T - 2, -1, -1):
+        run[t] = np.where(states[t] == states[t + 1], run[t + 1] + 1, 1)
+    start = np.ones((T, N), dtype=bool)
+    start[1:] = states[1:] != states[:-1]
+    accepted = start & (run >= P)
+    idx = np.where(accepted, np.arange(T)[:, None], -1)
+    last = np.maximum.accumulate(idx, axis=0)
+    cols = np.broadcast_to(np.arange(N), (T, N))
+    return np.where(last >= 0, states[np.clip(last, 0, None), cols], np.asarray(own)[None, :])
+
+
+def counting_rate(n: float, exposure: float) -> tuple[float, float]:
+    """Rate n/exposure and its Poisson error sqrt(max(n, 1))/exposure (NaN when exposure <= 0).
+
+    With nothing counted the error is the one-event resolution of the
+    exposure, not zero: a run of that length could not have told 0 from 1.
+    """
+    if not exposure > 0:
+        return float("nan"), float("nan")
+    return float(n) / exposure, math.sqrt(max(abs(float(n)), 1.0)) / exposure
+
+
 class MassTransfer(FromOutput, AnalysisBase):
-    """Transfer, detachment and reattachment of automata between the bodies.
+    """Transfer between the bodies and wear from persistent changes of membership.
 
     Parameters
     ----------
@@ -150,43 +207,52 @@ class MassTransfer(FromOutput, AnalysisBase):
     window : int, optional
         Frames over which an automaton's velocity is averaged before it is
         classified; default: enough frames for the slider to move one
-        automaton diameter (so that vibration does not flip states), but at
-        most a third of the analysed frames (``results.window_limited``).
-        Events shorter than the window are missed: the counts are lower bounds.
+        automaton diameter, but at most a third of the analysed frames
+        (``results.window_limited``).
+    persistence_s : float, optional
+        Time a new state must hold, uninterrupted, to count as a change of
+        membership (s).  Default: the time the slider takes to move two
+        automaton diameters, at least ``window`` frames and at most a quarter
+        of the analysed span (``results.persistence_limited``).
     surface_depth_m : float, optional
         Depth on each side of the original interface defining the surface
-        automata that normalise the rates (m); default 2 d.
+        automata that normalise ``transfer_rate`` (m); default 2 d.
 
     Attributes
     ----------
     results
         MDAnalysis ``Results`` holding the following fields.
-    time_s, sliding_distance_m
-        Times of the classified frames (s), slider displacement over them (m).
+    time_s, span_s, sliding_distance_m
+        Times of the classified frames (s), their span (s) and the slider
+        displacement over them (m).
+    window, persistence_frames, persistence_s
     n_surface
-        Surface automata N_s (normalisation).
-    states
-        (T, N) state per classified frame for the automata of both bodies.
-    transferred_lower_to_upper, transferred_upper_to_lower
-        Per frame: lower-body automata moving with the upper body, and vice versa.
-    detach_events, reattach_events, transfer_events, return_events
-    detachment_rate
-        Detachments per surface automaton per second (1/s).
-    reattachment_rate
-        Reattachments per detached (layer) automaton per second (1/s).
+        Surface automata N_s (normalisation of ``transfer_rate``).
+    states, membership
+        (T, N) instantaneous state and persistent membership per classified
+        frame for the automata of both bodies (mol 2, 3).
+    transfer_events, return_events, detach_events
+        Membership changes into the other body, back into the own body, and
+        out of the own body.
+    transfer_per_s, transfer_per_s_err, transfer_per_m, transfer_per_m_err
+        Transfer events per second and per metre slid, Poisson errors.
     transfer_rate
-        Transfers per surface automaton per metre of sliding (1/m).
-    net_transfer_rate
-        Net growth of (lower-in-upper minus upper-in-lower) per surface
-        automaton per metre (1/m, signed).
-    wear_rate
-        ``transfer_rate * V``: transfers per surface automaton per second (1/s).
+        Transfers per surface automaton per metre slid (1/m).
+    net_transfer_lower_to_upper
+        Lower-body automata that are members of the upper body at the end
+        minus at the start, minus the same for upper-body automata in the lower.
+    wear_lower, wear_upper
+        Net loss of members of each body over the span (automata).
+    wear_lower_per_s, wear_lower_per_m (and _err), wear_upper_per_s, wear_upper_per_m (and _err)
+        Net loss per second and per metre slid (automata/s, automata/m).
+    wear_lower_kg_per_m, wear_upper_kg_per_m
+        The same in mass, when the automaton mass is known.
     crossed_lower_up, crossed_upper_down
         Per frame: automata beyond the original interface by more than half
         a diameter, minus that number in the reference frame.
     """
 
-    def __init__(self, universe, meta: MCAMeta, *, window=None, surface_depth_m=None, **kwargs):
+    def __init__(self, universe, meta: MCAMeta, *, window=None, persistence_s=None, surface_depth_m=None, **kwargs):
         super().__init__(universe.trajectory, **kwargs)
         self._meta = meta
         self._auto_window = window is None
@@ -194,6 +260,10 @@ class MassTransfer(FromOutput, AnalysisBase):
             step = meta.velocity_m_s * meta.dump_interval_s
             window = max(1, math.ceil(meta.automaton_diameter_m / step))
         self._w = check_int("window", window, 1)
+        self._auto_persist = persistence_s is None
+        if persistence_s is None:
+            persistence_s = 2 * meta.automaton_diameter_m / meta.velocity_m_s
+        self._persist_s = check_range("persistence_s", persistence_s, 0.0, None, unit="s")
         depth = 2 * meta.automaton_diameter_m if surface_depth_m is None else surface_depth_m
         self._depth_nm = check_range("surface_depth_m", depth, 0.0, None, lo_open=True, unit="m") / NM
 
@@ -262,37 +332,70 @@ class MassTransfer(FromOutput, AnalysisBase):
         states = np.full(u.shape, STATE_LAYER, dtype=np.int8)
         states[u < vs[:, None] / 3] = STATE_LOWER
         states[u > 2 * vs[:, None] / 3] = STATE_UPPER
-        ev = count_events(states, self._own)
         t = self._time[w:]
         span = float(t[-1] - t[0])
+        frame_dt = float(np.median(np.diff(t))) if t.size > 1 else float("nan")
+        P = max(w, int(math.ceil(self._persist_s / frame_dt - 1e-9))) if np.isfinite(frame_dt) and frame_dt > 0 else w
+        r.persistence_limited = False
+        if self._auto_persist and P > max(1, states.shape[0] // 4):
+            P = max(1, states.shape[0] // 4)
+            r.persistence_limited = True
+        mem = persistent_membership(states, self._own, P)
+        own = self._own[None, :]
+        other = np.where(self._own == STATE_LOWER, STATE_UPPER, STATE_LOWER)[None, :]
+        a, b = mem[:-1], mem[1:]
+        changed = a != b
+        n_transfer = int((changed & (b == other)).sum())
+        n_return = int((changed & (b == own)).sum())
+        n_detach = int((changed & (a == own)).sum())
         ns = max(self._n_surface, 1)
-        layer_pop = float((states == STATE_LAYER).sum(axis=1).mean())
-        lo_in_up = ((states == STATE_UPPER) & self._is_lower[None, :]).sum(axis=1)
-        up_in_lo = ((states == STATE_LOWER) & ~self._is_lower[None, :]).sum(axis=1)
-        net = float((lo_in_up[-1] - lo_in_up[0]) - (up_in_lo[-1] - up_in_lo[0]))
+        lo_in_up = ((mem == STATE_UPPER) & self._is_lower[None, :]).sum(axis=1)
+        up_in_lo = ((mem == STATE_LOWER) & ~self._is_lower[None, :]).sum(axis=1)
         r.time_s = t
+        r.span_s = span
         r.sliding_distance_m = distance
         r.window = w
+        r.persistence_frames = int(P)
+        r.persistence_s = float(P * frame_dt) if np.isfinite(frame_dt) else float("nan")
         r.n_surface = int(self._n_surface)
         r.states = states
+        r.membership = mem
+        r.transfer_events = n_transfer
+        r.return_events = n_return
+        r.detach_events = n_detach
+        r.transfer_per_s, r.transfer_per_s_err = counting_rate(n_transfer, span)
+        r.transfer_per_m, r.transfer_per_m_err = counting_rate(n_transfer, distance)
+        r.transfer_rate, r.transfer_rate_err = counting_rate(n_transfer, ns * distance)
+        r.net_transfer_lower_to_upper = int((lo_in_up[-1] - lo_in_up[0]) - (up_in_lo[-1] - up_in_lo[0]))
         r.transferred_lower_to_upper = lo_in_up
         r.transferred_upper_to_lower = up_in_lo
-        r.layer_population = float(layer_pop)
-        for key in ("detach", "reattach", "transfer", "returned"):
-            r[f"{key}_events"] = int(ev[key].sum())
-        r.detachment_rate = r.detach_events / (ns * span) if span > 0 else float("nan")
-        r.reattachment_rate = r.reattach_events / (layer_pop * span) if (span > 0 and layer_pop > 0) else float("nan")
-        r.transfer_rate = r.transfer_events / (ns * distance) if distance > 0 else float("nan")
-        r.net_transfer_rate = net / (ns * distance) if distance > 0 else float("nan")
-        r.wear_rate = r.transfer_rate * (distance / span) if span > 0 else float("nan")
+        d = self._meta.automaton_diameter_m
+        m_auto = self._meta.raw.get("automaton_mass_kg")
+        if m_auto is None and self._meta.density_kg_m3:
+            vol = math.pi * d**2 / 4 * d if self._meta.dimension == 2 else math.pi * d**3 / 6
+            m_auto = self._meta.density_kg_m3 * vol
+        r.automaton_mass_kg = float(m_auto) if m_auto else float("nan")
+        for state, name in ((STATE_LOWER, "lower"), (STATE_UPPER, "upper")):
+            members = (mem == state).sum(axis=1)
+            n_out = int((changed & (a == state)).sum())
+            n_in = int((changed & (b == state)).sum())
+            loss = int(members[0] - members[-1])
+            r[f"wear_{name}"] = loss
+            r[f"wear_{name}_out_events"] = n_out
+            r[f"wear_{name}_in_events"] = n_in
+            for unit, exposure in (("s", span), ("m", distance)):
+                if exposure > 0:
+                    r[f"wear_{name}_per_{unit}"] = loss / exposure
+                    r[f"wear_{name}_per_{unit}_err"] = math.sqrt(max(n_in + n_out, 1)) / exposure
+                else:
+                    r[f"wear_{name}_per_{unit}"] = r[f"wear_{name}_per_{unit}_err"] = float("nan")
+            r[f"wear_{name}_kg_per_m"] = r[f"wear_{name}_per_m"] * r.automaton_mass_kg
+            r[f"wear_{name}_kg_per_m_err"] = r[f"wear_{name}_per_m_err"] * r.automaton_mass_kg
         r.crossed_lower_up = self._crossed[:, 0]
         r.crossed_upper_down = self._crossed[:, 1]
         r.interface_height_m = self._y0 * NM
-        d = self._meta.automaton_diameter_m
-        if self._meta.density_kg_m3:
-            m = self._meta.density_kg_m3 * math.pi * d**3 / 6
-            r.automaton_mass_kg = m
-            r.transferred_mass_kg_per_m = r.transfer_events * m / distance if distance > 0 else float("nan")
-        r.units = {"time_s": "s", "sliding_distance_m": "m", "detachment_rate": "1/s", "reattachment_rate": "1/s",
-                   "transfer_rate": "1/m", "net_transfer_rate": "1/m", "wear_rate": "1/s",
-                   "automaton_mass_kg": "kg", "transferred_mass_kg_per_m": "kg/m"}
+        r.units = {"time_s": "s", "span_s": "s", "sliding_distance_m": "m", "persistence_s": "s",
+                   "transfer_per_s": "1/s", "transfer_per_m": "1/m", "transfer_rate": "1/m",
+                   "wear_lower_per_s": "1/s", "wear_lower_per_m": "1/m", "wear_upper_per_s": "1/s",
+                   "wear_upper_per_m": "1/m", "wear_lower_kg_per_m": "kg/m", "wear_upper_kg_per_m": "kg/m",
+                   "automaton_mass_kg": "kg"}

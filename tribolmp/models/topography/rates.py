@@ -50,6 +50,21 @@ def _rate(rates: Mapping[str, Any], key: str, *, required: bool = False, positiv
     return float(v)
 
 
+_C1 = ("mu_per_s", "d0_m2_s", "dz", "dx_l2")
+
+
+def _has_c1(rates: Mapping[str, Any]) -> bool:
+    """All four Eq. 23 coefficients of contract C1 given (not null, not flagged invalid)."""
+    valid = rates.get("valid") if isinstance(rates.get("valid"), Mapping) else {}
+    flagged = set(rates.get("flagged") or ())
+    return all(rates.get(k) is not None and valid.get(k) is not False and k not in flagged for k in _C1)
+
+
+def _drives_eq23(rates: Mapping[str, Any]) -> bool:
+    """Whether a rates mapping can parameterise Eq. 23: C1 coefficients, or the legacy l and tau."""
+    return _has_c1(rates) or (rates.get("step_length_m") is not None and rates.get("step_time_s") is not None)
+
+
 def params_from_rates(
     rates: Mapping[str, Any],
     *,
@@ -99,6 +114,20 @@ def params_from_rates(
     if dim not in (1, 2):
         raise ParameterError("dim", "one of [1, 2]", dim)
     l = _rate(rates, "step_length_m", required=True, positive=True)
+    if _has_c1(rates) and _rate(rates, "step_time_s") is None:
+        # rates.json v2 (issue 14): the Eq. 23 coefficients measured on the MCA's 1D profile (contract C1).
+        # A 2D surface gets them per unit width of the 2D MCA's slab, one automaton (l) thick (PHYSICS.md 8).
+        slab = l if dim == 2 else 1.0
+        mu_c1, d0_c1 = _rate(rates, "mu_per_s"), _rate(rates, "d0_m2_s")
+        dz_c1, dxl2_c1 = _rate(rates, "dz") * slab, _rate(rates, "dx_l2") * slab
+        if duration is None:
+            duration = 5.0 / mu_c1 if mu_c1 > 0 else 1000.0 * l**2 / max(d0_c1, 1e-300)
+        if not (isinstance(steps, int) and steps >= 1):
+            raise ParameterError("steps", "an integer >= 1", steps)
+        return TopographyParams(
+            dim=dim, n=n, dx=l if dx is None else dx, d0=d0_c1, dx_noise=dxl2_c1 / l**2, dz=dz_c1, mu=mu_c1, l=l,
+            correlation_length=correlation_length, dt=duration / steps, steps=steps, operator=operator,
+        )
     tau = _rate(rates, "step_time_s", required=True, positive=True)
     d0 = _rate(rates, "diffusion_m2_s") or l**2 / (2 * dim * tau)
     dx_noise = l ** (dim + 2) / (2 * dim * tau)
@@ -133,14 +162,20 @@ def params_from_scene(scene, rates: Mapping[str, Any] | None = None) -> Topograp
     The grid (``dim``, ``grid_points``, ``pixel_size``), ``duration``,
     ``steps`` and ``correlation_length`` come from ``[topography]``
     (defaults when absent).  The rates come from, in order: the ``rates``
-    argument (e.g. the nanoscale model's ``rates.json``), the scene's
-    ``[rates]`` section (with ``[kinematics].sliding_velocity`` for the
+    argument (e.g. the nanoscale model's ``rates.json``; used only if it can
+    drive Eq. 23: valid C1 coefficients or the legacy ``step_length_m`` and
+    ``step_time_s``), the scene's ``[rates]`` section (with ``[kinematics].sliding_velocity`` for the
     transfer rate), or the ``[topography]`` fields ``d0, dx_noise, dz, mu, l``.
     The integrator is ``scene.topography.scheme`` (not part of the params).
     """
     from ...scene.schema import Topography
 
     topo = scene.topography or Topography()
+    if rates is not None and not isinstance(rates, Rates) and not _drives_eq23(rates):
+        # A measured rates.json (issue 14) holds no step_time_s (it was the identity l^2/D) and, from a run
+        # too short for the slow modes, no valid Eq. 23 coefficients: nothing measured can drive Eq. 23.
+        # The scene's [rates] or [topography] values do (stated in the topography stage's rates_source).
+        rates = None
     if rates is None and scene.rates is not None:
         rates = scene.rates.to_record()
     if rates is not None:
