@@ -46,7 +46,26 @@ def test_positions_are_absolute_and_time_is_real(tmp_path):
     np.testing.assert_array_equal(ts.data["c_nbond"], [0, 1, 2, 3])
     # step 200 x 2e-14 s = 4 ps (MDAnalysis time unit), not 200 ps
     assert ts.time == pytest.approx(4.0)
-    assert ts.velocities[0, 0] == pytest.approx(2.0)
+    # dt is the time between frames (100 steps x 0.02 ps = 2 ps), not the MD timestep (0.02 ps): an MSD
+    # divided by u.trajectory.dt is then per frame interval, not 100x off
+    assert u.trajectory.dt == pytest.approx(2.0)
+    assert [t.time for t in u.trajectory] == pytest.approx([0.0, 2.0, 4.0])
+    # frame 0 too (read while the Universe is built)
+    assert u.trajectory[0].time == 0.0
+    assert u.trajectory[2].velocities[0, 0] == pytest.approx(2.0)
+
+
+def test_time_of_a_dump_that_starts_late(tmp_path):
+    # a dump appended after a restart starts at step 5000: its times are step x timestep, not frame x dt
+    frames = _frames()
+    for k, f in enumerate(frames):
+        f["step"] = 5000 + 100 * k
+    _write(tmp_path, frames)
+    meta = read_meta(tmp_path)
+    u = open_trajectory(tmp_path, meta)
+    assert u.trajectory.dt == pytest.approx(2.0)
+    assert u.trajectory[0].time == pytest.approx(100.0)  # 5000 x 0.02 ps
+    assert u.trajectory[2].time == pytest.approx(104.0)
 
 
 def test_meta_contract_and_errors(tmp_path):

@@ -22,3 +22,10 @@ The trajectory analyses are MDAnalysis ``AnalysisBase`` subclasses:
 construct with ``(universe, meta)`` or ``Class.from_output(out_dir)``, then
 ``.run(start=, stop=, step=, frames=)`` and read ``.results``.
 """
+
+
+def read_atoms(dump, index=-1, *, meta=None):
+    """Frames of an MCA dump as ASE ``Atoms`` in ASE units; see :func:`tribolmp.analysis.handoff.read_atoms`."""
+    from .handoff import read_atoms as _read_atoms
+
+    return _read_atoms(dump, index, meta=meta)

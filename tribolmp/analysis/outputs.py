@@ -353,6 +353,8 @@ def _reader_class():
         """
 
         format = "MCADUMP"
+        #: MD timestep (ps), set by :func:`open_trajectory`; the reader's ``dt`` is the time between frames.
+        md_dt_ps = None
 
         def _read_next_timestep(self):
             f = self._file
@@ -385,7 +387,8 @@ def _reader_class():
             order = np.argsort(table[:, col["id"]], kind="stable")
             table = table[order]
             ts.data["step"] = step
-            ts.data["time"] = step * ts.dt
+            # ts.time (ps) from the MD step and the MD timestep; ts.dt stays the time between frames
+            ts.data["time"] = step * (self.md_dt_ps if self.md_dt_ps is not None else ts.dt)
             ts.data["box_lo"] = bounds[:, 0].copy()
             ts.dimensions = [*(bounds[:, 1] - bounds[:, 0]), 90.0, 90.0, 90.0]
             ts.positions = table[:, [col["x"], col["y"], col["z"]]]
@@ -422,7 +425,8 @@ def open_trajectory(out_dir: str | Path, meta: MCAMeta | None = None, dump: str 
     -------
     MDAnalysis.Universe
         Positions in nm (absolute LAMMPS frame), velocities in nm/ns (= m/s),
-        ``ts.time`` in ps (set from the real timestep), and per frame
+        ``u.trajectory.dt`` the time between dump frames (ps), ``ts.time``
+        the true time of each frame (ps, MD step x MD timestep), and per frame
         ``ts.data`` with ``mol``, ``radius`` (nm), ``c_nbond``, ``step`` and
         ``box_lo`` (nm).
     """
@@ -441,9 +445,10 @@ def open_trajectory(out_dir: str | Path, meta: MCAMeta | None = None, dump: str 
     if missing:
         raise DataFileError(f"{path}: ATOMS: expected columns {list(DUMP_COLUMNS)}, got {names}")
     _reader_class()
-    # MDAnalysis's time unit is ps; the reader's dt is "ps per MD step" times
-    # the step number, so giving it the real timestep makes ts.time correct.
-    dt_ps = meta.dt_s / 1e-12
+    # MDAnalysis's time unit is ps.  u.trajectory.dt must be the time between frames (what an MSD or
+    # any per-frame analysis divides by), and ts.time the true time of the frame: the dump interval
+    # in ps is the reader's dt, and ts.time = step x MD timestep (so resumed or irregular dumps keep
+    # their true times).
     with warnings.catch_warnings():
         # The topology has no masses (all 1.0) and no elements; that is intended.
         warnings.simplefilter("ignore")
@@ -452,8 +457,10 @@ def open_trajectory(out_dir: str | Path, meta: MCAMeta | None = None, dump: str 
             topology_format="LAMMPSDUMP",
             format="MCADUMP",
             additional_columns=_EXTRA_COLUMNS,
-            dt=dt_ps,
+            dt=meta.dump_interval_s / 1e-12,
         )
+    u.trajectory.md_dt_ps = meta.dt_s / 1e-12
+    u.trajectory.rewind()  # re-read frame 0 with the MD timestep known
     return u
 
 
