@@ -163,28 +163,21 @@ class Contact(Stage):
 
 def _contact_axisymmetric(ctx: StageContext, method: str) -> StageOutput:
     """Axisymmetric indenter: force, contact radius and (MDR) stiffness at fractions of the scene's load."""
-    import dataclasses
-
-    from ...models.contact.solve import params_from_scene, solve
+    from ...models.contact.solve import params_from_scene
+    from ...models.contact.sweep import axisymmetric_load_sweep
 
     base = params_from_scene(ctx.scene)
     if base.normal_force is None:
         raise ValueError("[load].normal_force must be > 0 for a stiffness-vs-load curve of an axisymmetric contact")
-    loads = base.normal_force * np.geomspace(0.01, 1.0, 9)
-    rows = [solve(dataclasses.replace(base, normal_force=float(F)), method=method) for F in loads]
-    arrays = {"force": np.array([r.force for r in rows]), "contact_radius": np.array([r.contact_radius for r in rows]),
-              "indentation": np.array([r.indentation for r in rows])}
-    if all("stiffness" in r for r in rows):
-        arrays["stiffness"] = np.array([r.stiffness for r in rows])
-    # The figure's x axis is the nominal (mean contact) pressure F / (pi a^2).
-    arrays["pressure"] = arrays["force"] / (np.pi * arrays["contact_radius"] ** 2)
+    sweep = axisymmetric_load_sweep(base, method=method)
+    arrays = {k: np.asarray(sweep[k]) for k in ("force", "contact_radius", "indentation", "stiffness", "pressure")
+              if k in sweep}
     np.savez(ctx.workdir / "stiffness.npz", **arrays)
     values: dict[str, Any] = {k: v.tolist() for k, v in arrays.items()}
-    values.update(profile=ctx.scene.geometry.profile, E_star_Pa=float(base.modulus), springs=int(rows[-1].get("springs", 0)) or None)
+    values.update(profile=ctx.scene.geometry.profile, E_star_Pa=float(base.modulus), springs=sweep["springs"])
     units = {"force": "N", "contact_radius": "m", "indentation": "m", "stiffness": "N/m", "pressure": "Pa", "E_star_Pa": "Pa"}
     files = {"stiffness": "stiffness.npz"} if "stiffness" in arrays else {"contact_curve": "stiffness.npz"}
     return StageOutput(values=values, units=units, files=files, method=method,
-                       message=f"{method} {ctx.scene.geometry.profile}, {len(loads)} loads up to {base.normal_force:g} N")
-
+                       message=f"{method} {ctx.scene.geometry.profile}, {sweep.message.split(': ', 1)[1]}")
 
 STAGE = Contact()
