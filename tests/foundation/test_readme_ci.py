@@ -28,3 +28,15 @@ def test_ci_runs_the_readme_test_command_verbatim():
     assert tests in ci
     # exit code 5 (no tests collected) must fail: the script stops on any non-zero status
     assert "set -euo pipefail" in ci
+
+
+def test_ci_runs_ruff_after_the_readme_test_command():
+    _, tests = _quick_start_block()
+    ci = (ROOT / ".ci" / "run").read_text()
+    assert "ruff check" in ci and ci.index("ruff check") > ci.index(tests)
+    import tomllib
+
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())
+    assert any(d.startswith("ruff") for d in project["project"]["optional-dependencies"]["test"])
+    assert {"F", "E", "W", "D", "I"} <= set(project["tool"]["ruff"]["lint"]["select"])
+    assert project["tool"]["ruff"]["lint"]["pydocstyle"]["convention"] == "numpy"

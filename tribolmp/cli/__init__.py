@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import importlib.util
 import math
 import sys
 from collections.abc import Sequence
@@ -27,7 +26,7 @@ from ..jsonio import dumps
 
 __all__ = ["COMMANDS", "OneLineParser", "emit_json", "float_list", "main", "seed_type"]
 
-#: command -> (module, one-line help).  A command is offered only if its module exists.
+#: command -> (module, one-line help); the module is imported only when its command runs.
 COMMANDS: dict[str, tuple[str, str]] = {
     "info": ("tribolmp.cli.info", "versions of tribolmp, LAMMPS (packages), numpy, ase, MDAnalysis, MPI"),
     "check": ("tribolmp.cli.check", "validate a scene file"),
@@ -50,10 +49,6 @@ class OneLineParser(argparse.ArgumentParser):
         self.exit(EXIT_SETUP, f"{self.prog}: error: {' '.join(message.split())}\n")
 
 
-def _available() -> dict[str, tuple[str, str]]:
-    return {k: v for k, v in COMMANDS.items() if importlib.util.find_spec(v[0]) is not None}
-
-
 def build_parser(command: str | None = None) -> OneLineParser:
     """Build the top-level parser; configure only ``command``'s subparser."""
     from .. import __version__
@@ -61,7 +56,7 @@ def build_parser(command: str | None = None) -> OneLineParser:
     parser = OneLineParser(prog="tribolmp", description="Multiscale simulation of friction, lubrication and wear.")
     parser.add_argument("--version", action="version", version=f"tribolmp {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=OneLineParser)
-    for name, (module, help_) in _available().items():
+    for name, (module, help_) in COMMANDS.items():
         p = sub.add_parser(name, help=help_, description=help_)
         if name == command:
             importlib.import_module(module).configure(p)
@@ -83,8 +78,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     argv = list(sys.argv[1:] if argv is None else argv)
     command = next((a for a in argv if not a.startswith("-")), None)
-    available = _available()
-    parser = build_parser(command if command in available else None)
+    parser = build_parser(command if command in COMMANDS else None)
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # argparse's own exit (help, version, errors)
@@ -92,7 +86,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.command is None:
         parser.print_help()
         return EXIT_SETUP
-    module = importlib.import_module(available[args.command][0])
+    module = importlib.import_module(COMMANDS[args.command][0])
     try:
         return int(module.run(args) or 0)
     except BrokenPipeError:
