@@ -142,3 +142,15 @@ def test_fuzzed_toml_text(tmp_path_factory, text):
         load_scene(p)
     except SceneError as exc:
         assert "\n" not in str(exc)
+
+
+def test_bond_style_choices_are_the_law_registry():
+    # The scene sits below the LAMMPS layer and cannot import its registry: the two lists are
+    # kept equal by this test (a new law is one BondLaw entry, its fragment and this choice).
+    import dataclasses
+
+    from tribolmp.lammps.laws import law_names
+    from tribolmp.scene.schema import Nanoscale
+
+    choices = next(f for f in dataclasses.fields(Nanoscale) if f.name == "bond_style").metadata["choices"]
+    assert tuple(choices) == tuple(law_names())
