@@ -183,3 +183,22 @@ def test_topography_takes_measured_c1_or_falls_back_to_the_scene():
     fallback = params_from_scene(scene, rates=measured_nothing)
     topo = scene.topography
     assert (fallback.d0, fallback.mu) == (topo.d0, topo.mu)
+    # the chain hands the rates over as the shared record (tribolmp.records.Rates): same decisions
+    from tribolmp.records import Rates
+
+    rec = Rates.from_mapping({k: v for k, v in measured_nothing.items()}, source="test")
+    again = params_from_scene(scene, rates=rec)
+    assert (again.d0, again.mu) == (topo.d0, topo.mu)
+    assert params_from_scene(scene, rates=Rates.from_mapping(c1, source="test")).mu == 2e9
+
+
+def test_rates_json_loads_into_the_shared_record(tmp_path):
+    """rates.json is read by the chain through tribolmp.records.Rates: every shared field must validate."""
+    from tribolmp.records import Rates
+
+    rng = np.random.default_rng(14)
+    make_transfer(tmp_path, rng)
+    make_friction(tmp_path, rng, n=400, dt=1e-11)
+    compute_rates(tmp_path, start_s=0.0)
+    rec = Rates.from_mapping(json.loads((tmp_path / "rates.json").read_text()), source="test")
+    assert rec.mu is not None and rec.sliding_velocity_m_s == 10.0

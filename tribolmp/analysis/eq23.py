@@ -310,7 +310,8 @@ def fit_eq23(x, t, h, *, start_s: float | None = None, first_lag: int = 1, n_blo
     dict
         C1 fields ``mu_per_s``, ``d0_m2_s``, ``dz``, ``dx_l2`` (None when not
         valid), their ``*_err``, ``valid`` (per coefficient), ``reasons`` (per
-        invalid coefficient), ``modes_used`` (count), ``mode_indices_used``,
+        invalid coefficient), ``modes_used`` (indices m of the modes k = 2 pi m / L
+        used, contract C1 ``[int]``), ``n_modes_used``,
         ``stationary``, ``stationarity_p``, ``raw`` (estimates regardless of
         validity), ``modes`` (per-mode table), ``settings``, ``units``.
     """
@@ -425,8 +426,8 @@ def fit_eq23(x, t, h, *, start_s: float | None = None, first_lag: int = 1, n_blo
     out.update(
         valid=valid,
         reasons=reasons,
-        modes_used=n_used,
-        mode_indices_used=[int(v) for v in m[used]],
+        modes_used=[int(v) for v in m[used]],
+        n_modes_used=n_used,
         stationary=stationary,
         stationarity_p=p_stat,
         raw=raw,

@@ -390,7 +390,7 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
         "mu_n_independent": get(fc, "n_independent"),
         **eq_top,
         "valid": valid,
-        "modes_used": 0 if eq is None else int(eq["modes_used"]),
+        "modes_used": [] if eq is None else list(eq["modes_used"]),
         "layer_depth_m": layer,
         "layer_depth_err_m": get(vp, "layer_depth_columns_err_m"),
         "layer_depth_xavg_m": get(vp, "layer_depth_m"),

@@ -5,7 +5,7 @@ fits the Eq. 23 coefficients on a surface profile h(x, t) (``profile.npz``:
 ``x`` [m], ``t`` [s], ``h`` [m] of shape (nt, nx); written by every MCA run
 next to ``rates.json``).  JSON fields (SI): ``mu_per_s``, ``d0_m2_s``, ``dz``,
 ``dx_l2``, their ``*_err``, ``valid`` (per coefficient), ``reasons``,
-``modes_used``, ``stationary``, ``units`` and the per-mode table ``modes``.
+``modes_used`` (indices of the modes used), ``stationary``, ``units`` and the per-mode table ``modes``.
 """
 
 from __future__ import annotations
@@ -49,7 +49,7 @@ def run(args) -> int:
         emit_json(res)
         return 0
     print(f"profile: {args.profile}  ({res['n_frames']} frames, dt {res['dt_s']:.3g} s, L {res['length_m']:.3g} m)")
-    print(f"modes used: {res['modes_used']} {res['mode_indices_used']}  stationary: {res['stationary']} "
+    print(f"modes used: {res['n_modes_used']} {res['modes_used']}  stationary: {res['stationary']} "
           f"(p = {res['stationarity_p']:.2g})")
     for c in COEFFICIENTS:
         unit = res["units"][c]

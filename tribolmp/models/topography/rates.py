@@ -171,7 +171,10 @@ def params_from_scene(scene, rates: Mapping[str, Any] | None = None) -> Topograp
     from ...scene.schema import Topography
 
     topo = scene.topography or Topography()
-    if rates is not None and not isinstance(rates, Rates) and not _drives_eq23(rates):
+    given = rates
+    if isinstance(rates, Rates):
+        given = {k: v for k, v in rates.to_dict(with_units=False).items() if v is not None}
+    if rates is not None and not _drives_eq23(given):
         # A measured rates.json (issue 14) holds no step_time_s (it was the identity l^2/D) and, from a run
         # too short for the slow modes, no valid Eq. 23 coefficients: nothing measured can drive Eq. 23.
         # The scene's [rates] or [topography] values do (stated in the topography stage's rates_source).
