@@ -268,3 +268,68 @@ def test_doubtful_sphere_contact_warns_but_runs(tmp_path):
     assert json.loads(proc.stdout)["warnings"]
     quiet = cli("contact", "axisymmetric", "--radius", "0.01", "--modulus", "1e11", "--indentation", "2e-6")
     assert quiet.returncode == 0 and quiet.stderr == ""  # a/R = 0.014: no warning
+
+
+# --- check refuses what run would refuse later
+@pytest.mark.parametrize(
+    "text, field",
+    [
+        # failed after ~35 s of LAMMPS before issue 12
+        ("[load]\npressures = []\n", "[load].pressures"),
+        # a 2^20-point side: the contact stage ran out of memory
+        ('[geometry]\nprofile = "rough"\n[roughness]\ngrid_points = 1048576\n', "[roughness].grid_points"),
+        ("[topography]\ndim = 2\ngrid_points = 65536\n", "[topography].grid_points"),
+    ],
+)
+def test_check_refuses_what_run_would(tmp_path, text, field):
+    scene = tmp_path / "s.toml"
+    scene.write_text(text)
+    proc = cli("check", scene)
+    assert_one_line(proc, 2)
+    assert field in proc.stderr
+
+
+def test_check_reads_the_surface_file_a_scene_names(tmp_path):
+    """A corrupted height map used to pass check and fail in the contact stage."""
+    bad = tmp_path / "bad.npy"
+    bad.write_bytes(b"\x93NUMPY this is not an array")
+    scene = tmp_path / "s.toml"
+    scene.write_text('[geometry]\nprofile = "rough"\n[roughness]\nsurface_file = "bad.npy"\npixel_size = 1e-6\n')
+    proc = cli("check", scene)
+    assert_one_line(proc, 2)
+    assert "[roughness].surface_file" in proc.stderr
+    for name in ("default", "lubricated", "polishing", "rates_given"):
+        assert cli("check", scene_path(name)).returncode == 0, name
+
+
+# --- long loops show progress
+def test_progress_is_silent_for_short_jobs_and_gives_an_eta_for_long_ones(monkeypatch):
+    import io
+
+    from tribolmp import progress as prog
+
+    clock = iter([0.0, 0.5, 1.0])  # construction, then two calls within the first interval
+    monkeypatch.setattr(prog.time, "monotonic", lambda: next(clock))
+    out = io.StringIO()
+    p = prog.Progress("job", total=10, stream=out)
+    p(0.5)
+    p(1.0)
+    assert out.getvalue() == ""
+    clock = iter([0.0, 3.0, 6.0])
+    p = prog.Progress("job", total=10, stream=out)
+    p(0.25)
+    p(1.0)
+    lines = out.getvalue().splitlines()
+    assert lines[0] == "job:  25 % (2/10 steps), ETA 9 s"  # 3 s for a quarter: 9 s to go
+    assert lines[1].startswith("job: 100 %") and "done in 6 s" in lines[1]
+
+
+def test_eq23_evolve_reports_progress_to_the_end():
+    import numpy as np
+
+    from tribolmp.models.topography import TopographyParams, evolve
+
+    seen = []
+    p = TopographyParams(dim=1, n=64, dx=1e-9, d0=1e-12, dx_noise=1e-30, dz=1e-30, mu=1.0, dt=1e-3, steps=1000)
+    evolve(p, rng=np.random.default_rng(0), progress=lambda f, what="": seen.append(f))
+    assert 100 <= len(seen) <= 1001 and seen[-1] == 1.0 and seen == sorted(seen)

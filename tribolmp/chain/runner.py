@@ -134,6 +134,21 @@ def _one_line(exc: BaseException) -> str:
     return text if isinstance(exc, (SetupError, StageError)) or ":" in text[:40] else f"{type(exc).__name__}: {text}"
 
 
+def preflight(scene: Scene, plan: Plan) -> list[str]:
+    """Every running stage's :meth:`~tribolmp.chain.stage.Stage.preflight` (refusals raise).
+
+    Returns
+    -------
+    list of str
+        ``"stage: note"`` lines (cost estimates, warnings).
+    """
+    notes: list[str] = []
+    for sp in plan.stages:
+        if sp.run:
+            notes += [f"{sp.name}: {n}" for n in plan.registry[sp.name].preflight(scene, sp)]
+    return notes
+
+
 def run_chain(
     scene: Scene,
     out_dir: str | Path,
@@ -194,6 +209,7 @@ def _run_chain_locked(scene, out, *, force, cache_dir, progress, quiet, figures,
     from . import report as _report
 
     plan = plan_scene(scene, registry=registry)
+    notes = preflight(scene, plan)
     names = plan.registry.names
     forced = set(names) if force is True else set(force or ())
     unknown = forced - set(names)
@@ -202,6 +218,8 @@ def _run_chain_locked(scene, out, *, force, cache_dir, progress, quiet, figures,
     cache = StageCache(cache_dir if cache_dir is not None else out / "cache")
     run = ChainRun(scene, plan, out)
     prog = progress or Progress(len(plan.running), quiet=quiet)
+    for line in notes:
+        prog._print(f"note: {line}")
     scene_dict = scene.to_dict()
     t_start = time.perf_counter()
 

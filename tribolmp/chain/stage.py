@@ -237,6 +237,17 @@ class Stage:
         """Compute the stage's outputs into ``ctx.workdir``."""
         raise NotImplementedError
 
+    def preflight(self, scene: Scene, decision: Decision) -> list[str]:
+        """Refuse what ``run`` would refuse later, before any stage starts; return notes.
+
+        Called by ``tribolmp check`` and by the runner for every running stage
+        before the first one runs: files the scene names are read, grids are
+        checked against the machine's memory, and costs are estimated.  Raise a
+        :class:`~tribolmp.errors.SetupError` (one line naming the field) for a
+        refusal; return one-line notes (cost estimates, doubtful choices).
+        """
+        return []
+
     # -- helpers for plan()
 
     def go(

@@ -118,8 +118,11 @@ def _stick_slip(args, scene) -> dict:
 def _oscillate(args, scene) -> dict:
     from ..models.macro import oscillation_from_scene
 
+    from ..progress import Progress
+
     res = oscillation_from_scene(scene, args.amplitude, frequency=args.frequency, cycles=args.cycles,
-                                 steps_per_cycle=args.steps_per_cycle, mu=args.mu, rng=_profile_rng(scene))
+                                 steps_per_cycle=args.steps_per_cycle, mu=args.mu, rng=_profile_rng(scene),
+                                 progress=Progress("macro oscillate", "steps", args.cycles * args.steps_per_cycle))
     spc = args.steps_per_cycle
     last = slice(res.force_x.size - spc - 1, res.force_x.size)
     return {

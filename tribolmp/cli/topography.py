@@ -121,7 +121,10 @@ def _evolve(args) -> int:
     if args.seed is not None and args.seed < 0:
         raise ParameterError("--seed", "an integer >= 0", args.seed)
     rng = np.random.default_rng(args.seed)
-    res = evolve(params, rng=rng, scheme=args.scheme, replicas=args.replicas)
+    from ..progress import Progress
+
+    res = evolve(params, rng=rng, scheme=args.scheme, replicas=args.replicas,
+                 progress=Progress("topography evolve", "steps", params.steps))
     files = {}
     if args.out:
         from pathlib import Path

@@ -170,6 +170,10 @@ def _check_consistency(scene: Scene) -> None:
             path = Path(scene.source).parent / path
         if not path.exists():
             raise SceneError("[roughness].surface_file", "an existing .npy height map", str(path), src)
+    if not scene.load.pressures:
+        # The contact stage's stiffness-vs-load table needs at least one load (found after the
+        # LAMMPS stage otherwise).
+        raise SceneError("[load].pressures", "at least one nominal pressure in Pa", "[]", src)
     if not math.isfinite(scene.effective_modulus):  # pragma: no cover - guarded by ranges
         raise SceneError("[material].youngs_modulus", "finite moduli", "inf", src)
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import replace
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -107,6 +108,35 @@ class Contact(Stage):
         # keep the option order of the reports: method, mesh, surface, expected_*
         options = {"method": opts.pop("method"), "mesh": opts.pop("mesh"), "surface": surface, **opts}
         return replace(decision, reason=decision.reason.replace("{surface}", surface), options=options)
+
+    def preflight(self, scene, decision: Decision) -> list[str]:
+        """Read the height map the scene names (a damaged file fails here) and check the grid's memory."""
+        from ...resources import check_memory
+
+        if scene.geometry.profile != "rough" or scene.roughness is None or "surface" in decision.supplied:
+            return []
+        r = scene.roughness
+        if r.surface_file:
+            from ...errors import SetupError
+            from ...models.contact.solve import load_surface
+
+            path = Path(r.surface_file)
+            if not path.is_absolute() and scene.source not in ("<default>", "<scene>"):
+                path = Path(scene.source).parent / path
+            try:
+                h, _ = load_surface(path, r.pixel_size)
+            except SetupError as exc:
+                raise SceneError("[roughness].surface_file", "a readable height map", str(exc), scene.source) from None
+            n = int(max(h.shape))
+        else:
+            n = int(r.grid_points)
+        method = decision.options.get("method")
+        mesh = (decision.options.get("mesh") or n) if method == "bem" else n
+        # BEM: FFTs on the zero-padded (2n)^2 grid, ~6 complex/real work arrays; MDR: the map and its
+        # line profiles, ~4 float64 copies.
+        need = 6 * 16 * (2 * mesh) ** 2 if method == "bem" else 4 * 8 * n**2
+        check_memory(need, "[roughness].grid_points", n, f"the {method} contact solve on {mesh}^2 points", scene.source)
+        return []
 
     def run(self, ctx: StageContext) -> StageOutput:
         """Normal stiffness against load: rough surface (evolved, given or generated) or axisymmetric profile."""

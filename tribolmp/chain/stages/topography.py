@@ -72,13 +72,27 @@ class Topography(Stage):
         return replace(decision, reason=f"Eq. 23 with rates {rsrc}; {decision.reason}", sections=secs,
                        options={**decision.options, "rates_source": src})
 
+    def preflight(self, scene, decision: Decision) -> list[str]:
+        """The Eq. 23 grid against this machine's memory, and the evolution's cost."""
+        from ...resources import check_memory
+
+        t = scene.topography
+        points = float(t.grid_points) ** t.dim
+        # The exact scheme keeps ~5 grid arrays of float64 (benchmarks/topography_speed_vs_error.py:
+        # 5.0 grid arrays at 1024^2), plus the saved map and its PSD.
+        check_memory(7 * 8 * points, "[topography].grid_points", t.grid_points, f"a {t.dim}D Eq. 23 grid",
+                     scene.source)
+        # ~90 ns per point-step measured from 2^10 to 2^20 points (same benchmark).
+        seconds = 90e-9 * points * t.steps
+        return [f"Eq. 23 on {t.grid_points}^{t.dim} points x {t.steps} steps: ~{seconds:.2g} s"] if seconds > 10 else []
+
     def run(self, ctx: StageContext) -> StageOutput:
         """Eq. 23 with the upstream rates -> final height map (``surface.npy`` + sidecar JSON) and its PSD."""
         from ...models import topography as topo
 
         rates, rates_src = upstream_rates(ctx)
         params = topo.params_from_scene(ctx.scene, rates=rates)
-        res = topo.evolve(params, rng=ctx.rng, scheme=ctx.scene.topography.scheme)
+        res = topo.evolve(params, rng=ctx.rng, scheme=ctx.scene.topography.scheme, progress=ctx.progress)
         topo.save_height_map(ctx.workdir / "surface.npy", res.h, params.dx)
         np.savez(ctx.workdir / "psd.npz", k=res.k, psd=res.psd, psd_theory=res.psd_theory)
         files = {"surface": "surface.npy", "psd": "psd.npz"}

@@ -189,10 +189,13 @@ def stick_slip_from_scene(scene, mu: float | None = None, contact_law: str = "ri
 
 
 def oscillation_from_scene(scene, amplitude: float, *, frequency: float | None = None, cycles: int = 3,
-                           steps_per_cycle: int = 200, mu: float | None = None, rng=None):
-    """Chain entry point: prescribed tangential oscillation of the scene's contact (micro-slip loops)."""
+                           steps_per_cycle: int = 200, mu: float | None = None, rng=None, progress=None):
+    """Chain entry point: prescribed tangential oscillation of the scene's contact (micro-slip loops).
+
+    ``progress(fraction, what)`` is called ~200 times over the steps (long runs).
+    """
     ts = scene.tribospectroscopy
     f = frequency or (ts.frequency if ts is not None else 65e3)
     p = OscillationParams(normal_force=scene.load.normal_force, amplitude=amplitude, frequency=f, cycles=cycles,
                           steps_per_cycle=steps_per_cycle)
-    return oscillate(p, contact_from_scene(scene, mu=mu, rng=rng))
+    return oscillate(p, contact_from_scene(scene, mu=mu, rng=rng), progress=progress)

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import BlowUpError, ConvergenceError, ParameterError
+from ...progress import call_progress
 from ...scene.fields import param, validate_dataclass
 from ..base import MethodRegistry, Result, timed
 from .friction import ConstantFriction, FrictionLaw
@@ -428,7 +429,7 @@ class OscillationParams:
         validate_dataclass(self)
 
 
-def oscillate(params: OscillationParams, contact) -> Result:
+def oscillate(params: OscillationParams, contact, *, progress=None) -> Result:
     """Drive an MDR contact with per-spring slip through a prescribed oscillation.
 
     Parameters
@@ -456,6 +457,7 @@ def oscillate(params: OscillationParams, contact) -> Result:
         tang.step(d, 0.0)
         for i, ui in enumerate(u):
             fn[i], fx[i] = tang.step(d, ui)
+            call_progress(progress, i + 1, u.size, "oscillation steps")
         work = np.concatenate([[0.0], np.cumsum(0.5 * (fx[1:] + fx[:-1]) * np.diff(u))])
         per = work[:: params.steps_per_cycle]
         res.update(

@@ -51,6 +51,7 @@ from typing import Any
 import numpy as np
 
 from ...errors import ParameterError
+from ...progress import call_progress
 from ...scene.fields import param, validate_dataclass
 from ..base import MethodRegistry, Result
 from . import spectra
@@ -427,6 +428,7 @@ def evolve(
     scheme: str = "exact",
     replicas: int = 1,
     record_steps: Any = None,
+    progress: Any = None,
 ) -> Result:
     """Evolve Eq. 23 for ``params.steps`` steps of ``params.dt``.
 
@@ -448,6 +450,9 @@ def evolve(
     record_steps : sequence of int, optional
         Steps (1 ... steps) after which the PSD and roughness are recorded in
         ``history`` (the running-in series).
+    progress : callable, optional
+        ``progress(fraction, what)``, called ~200 times over the steps (e.g.
+        :class:`tribolmp.progress.Progress` or the chain's bar).
 
     Returns
     -------
@@ -518,6 +523,7 @@ def evolve(
         t0 = time.perf_counter()
         stepper.step()
         loop_time += time.perf_counter() - t0
+        call_progress(progress, i, p.steps, "Eq. 23 steps")
         if i == nxt:
             snap = snapshot(i)
             history.append({k: snap[k] for k in ("t_s", "step", "k", "psd", "psd_theory", "rq", "rq_theory")})
