@@ -147,7 +147,8 @@ def test_resume_after_kill(cli, tmp_path):
     assert [r["name"] for r in res.json()] == list(STAGES)
 
 
-def test_failing_stage_one_line_and_others_kept(cli, tmp_path):
+def test_damaged_surface_refused_before_anything_runs(cli, tmp_path):
+    """A NaN height map is refused by the contact stage's preflight: exit 2, one line, nothing run (issue 12)."""
     bad = tmp_path / "bad.npy"
     np.save(bad, np.full((16, 16), np.nan))
     scene_file = tmp_path / "bad.toml"
@@ -167,9 +168,28 @@ def test_failing_stage_one_line_and_others_kept(cli, tmp_path):
         )
     )
     res = cli("run", scene_file, "--out", tmp_path / "o", "--no-figures", timeout=300)
-    assert res.returncode in (2, 3), res.stderr
-    last = res.stderr.strip().splitlines()[-1]
-    assert last.startswith("tribolmp run: stage 'contact' failed:") and "Traceback" not in res.stderr
+    assert res.returncode == 2, res.stderr
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and "[roughness].surface_file" in lines[0] and "Traceback" not in res.stderr
+    assert not (tmp_path / "o" / "report.json").exists()
+
+
+def test_failing_stage_one_line_and_others_kept(tmp_path):
+    """A stage that fails at run time is recorded; stages that do not depend on it still run."""
+    from tribolmp.chain.registry import REGISTRY
+    from tribolmp.chain.runner import run_chain
+    from tribolmp.errors import StageError
+    from tribolmp.scene import load_scene
+
+    base = type(REGISTRY["contact"])
+
+    class Broken(base):
+        def run(self, ctx):
+            raise RuntimeError("solver diverged")
+
+    registry = REGISTRY.replaced("contact", Broken())
+    with pytest.raises(StageError, match=r"contact.*solver diverged"):
+        run_chain(load_scene(scene_path("rates_given")), tmp_path / "o", quiet=True, figures=False, registry=registry)
     rows = _stages(tmp_path / "o")
     assert not rows["contact"]["ran"] and rows["contact"]["reason"].startswith("failed:")
     assert rows["tribospectroscopy"]["ran"], rows["tribospectroscopy"]["reason"]

@@ -28,7 +28,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2] / "tribolmp"
 
-FOUNDATIONS = {"tribolmp", "errors", "units", "rng", "params", "jsonio", "results", "records", "environment", "benchmarking", "locking"}
+FOUNDATIONS = {"tribolmp", "errors", "units", "rng", "params", "jsonio", "results", "records", "environment", "benchmarking", "locking", "progress", "resources"}
 LAYER = {"scene": 1, "models": 2, "analysis": 3, "lammps": 3, "chain": 4, "cli": 5, "__main__": 5}
 #: Downward pairs that are still forbidden (importer package, imported package): the analysis reads
 #: LAMMPS output files only and validates with the foundations, not with the models.
