@@ -333,3 +333,49 @@ def test_eq23_evolve_reports_progress_to_the_end():
     p = TopographyParams(dim=1, n=64, dx=1e-9, d0=1e-12, dx_noise=1e-30, dz=1e-30, mu=1.0, dt=1e-3, steps=1000)
     evolve(p, rng=np.random.default_rng(0), progress=lambda f, what="": seen.append(f))
     assert 100 <= len(seen) <= 1001 and seen[-1] == 1.0 and seen == sorted(seen)
+
+
+# --- surfaces no contact model can treat, and sidecars that lie
+def _surface(tmp_path, name, h, meta):
+    import numpy as np
+
+    np.save(tmp_path / f"{name}.npy", h)
+    if meta is not None:
+        (tmp_path / f"{name}.json").write_text(json.dumps(meta))
+    return tmp_path / f"{name}.npy"
+
+
+@pytest.mark.parametrize("method", ["bem", "mdr"])
+def test_overflowing_heights_are_refused(tmp_path, method):
+    """Heights x 1e300: ZeroDivisionError (BEM) or a stiffness of 0 with exit 0 (MDR) before issue 12."""
+    import numpy as np
+
+    h = np.random.default_rng(0).standard_normal((32, 32)) * 1e-6
+    f = _surface(tmp_path, "big", h * 1e300, {"pixel_size_m": 1e-6})
+    proc = cli("contact", "rough", "--surface", f, "--modulus", "1e11", "--pressures", "1e6", "--method", method)
+    assert_one_line(proc, 2)
+    assert "surface" in proc.stderr
+    ok = _surface(tmp_path, "ok", h, {"pixel_size_m": 1e-6})
+    good = cli("contact", "rough", "--surface", ok, "--modulus", "1e11", "--pressures", "1e6", "--method", method)
+    assert good.returncode == 0, good.stderr  # the same surface at its real scale is fine
+
+
+def test_sidecar_with_another_shape_is_refused(tmp_path):
+    """A sidecar saying 128^2 on a 32^2 array was silently used before issue 12."""
+    import numpy as np
+
+    f = _surface(tmp_path, "s", np.zeros((32, 32)), {"pixel_size_m": 1e-6, "shape": [128, 128]})
+    proc = cli("contact", "rough", "--surface", f, "--modulus", "1e11", "--pressures", "1e6")
+    assert_one_line(proc, 2)
+    assert "shape" in proc.stderr
+
+
+def test_scene_surface_without_sidecar_says_where_its_pixel_size_comes_from(tmp_path):
+    import numpy as np
+
+    _surface(tmp_path, "s", np.random.default_rng(1).standard_normal((32, 32)) * 1e-7, None)
+    scene = tmp_path / "scene.toml"
+    scene.write_text('[geometry]\nprofile = "rough"\n[roughness]\nsurface_file = "s.npy"\npixel_size = 1e-6\n')
+    proc = cli("check", scene)
+    assert proc.returncode == 0, proc.stderr
+    assert "no sidecar" in proc.stdout and "[roughness].pixel_size = 1e-06 m" in proc.stdout

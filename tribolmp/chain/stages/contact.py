@@ -116,6 +116,7 @@ class Contact(Stage):
         if scene.geometry.profile != "rough" or scene.roughness is None or "surface" in decision.supplied:
             return []
         r = scene.roughness
+        notes: list[str] = []
         if r.surface_file:
             from ...errors import SetupError
             from ...models.contact.solve import load_surface
@@ -128,6 +129,9 @@ class Contact(Stage):
             except SetupError as exc:
                 raise SceneError("[roughness].surface_file", "a readable height map", str(exc), scene.source) from None
             n = int(max(h.shape))
+            if path.suffix.lower() == ".npy" and not path.with_suffix(".json").exists():
+                notes.append(f"{path.name} has no sidecar {path.with_suffix('.json').name}: its pixel size is "
+                             f"[roughness].pixel_size = {r.pixel_size:g} m (set it there if that is not right)")
         else:
             n = int(r.grid_points)
         method = decision.options.get("method")
@@ -136,7 +140,7 @@ class Contact(Stage):
         # line profiles, ~4 float64 copies.
         need = 6 * 16 * (2 * mesh) ** 2 if method == "bem" else 4 * 8 * n**2
         check_memory(need, "[roughness].grid_points", n, f"the {method} contact solve on {mesh}^2 points", scene.source)
-        return []
+        return notes
 
     def run(self, ctx: StageContext) -> StageOutput:
         """Normal stiffness against load: rough surface (evolved, given or generated) or axisymmetric profile."""

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import MissingFeatureError, ParameterError, SurfaceFileError
+from ...errors import BlowUpError, MissingFeatureError, ParameterError, SurfaceFileError
 from ...scene.fields import param, validate_dataclass
 from ..base import MethodRegistry, Result
 from . import mdr as _mdr
@@ -472,10 +472,43 @@ def solve_rough(
     check_int("realizations", realizations, 1)
     if method == "mdr" and rng is None:
         raise ParameterError("rng", "a numpy.random.Generator for the MDR ensemble", None)
+    _check_plausible_surface(h, dx)
     t0 = time.perf_counter()
     res = impl(h, dx, E, P, periodic, realizations, rng)
     res["time_s"] = time.perf_counter() - t0
+    _check_finite_stiffness(res, method)
     return res
+
+
+#: Heights beyond a metre are a unit mistake (a surface's roughness is nm to mm).
+MAX_PLAUSIBLE_HEIGHT_M = 1.0
+#: The half-space contact models assume small slopes; an rms gradient above this is no surface.
+MAX_PLAUSIBLE_RMS_GRADIENT = 10.0
+
+
+def _check_plausible_surface(h: np.ndarray, dx: float) -> None:
+    """Refuse heights no half-space contact model can treat (before they overflow into a zero stiffness)."""
+    top = float(np.max(np.abs(h - h.mean())))
+    if not top <= MAX_PLAUSIBLE_HEIGHT_M:
+        raise ParameterError("surface", f"height deviations <= {MAX_PLAUSIBLE_HEIGHT_M:g} m (wrong unit?)",
+                             f"max |h - <h>| = {top:.3g} m")
+    gx = np.diff(h, axis=0, append=h[:1]) / dx
+    gy = np.diff(h, axis=1, append=h[:, :1]) / dx
+    grad = float(np.sqrt(np.mean(gx**2 + gy**2)))
+    if not grad <= MAX_PLAUSIBLE_RMS_GRADIENT:
+        raise ParameterError("surface", f"an rms gradient <= {MAX_PLAUSIBLE_RMS_GRADIENT:g} (small-slope half-space "
+                             "contact; wrong height unit or pixel size?)", f"{grad:.3g}")
+
+
+def _check_finite_stiffness(res: Result, method: str) -> None:
+    """No rough-contact result may hand on a non-finite or zero stiffness where the surfaces touch."""
+    for row in res.get("rows", []):
+        k, f = row.get("stiffness"), row.get("force")
+        if f is not None and f > 0 and not (k is not None and math.isfinite(k) and k > 0):
+            if k is not None and math.isinf(k) and method == "bem":
+                continue  # a closed periodic cell: infinite interfacial stiffness is the exact answer
+            raise BlowUpError(f"rough contact ({method}): stiffness {k!r} N/m at {row.get('pressure'):g} Pa "
+                              "is not a finite positive number")
 
 
 def rough_params_from_scene(scene) -> RoughParams:

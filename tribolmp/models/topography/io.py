@@ -164,6 +164,9 @@ def read_native(path, pixel_size: float | None = None, unit: str | None = None) 
             if not isinstance(h, np.ndarray):
                 raise SurfaceFileError(f"{npy}: expected a single .npy array, got an archive")
             meta = json.loads(side.read_text()) if side.exists() else {}
+            if "shape" in meta and list(meta["shape"]) != list(h.shape):
+                # The sidecar belongs to another map (or the array was cut): its pixel size would be wrong too.
+                raise SurfaceFileError(f"{side}: expected the shape of {npy.name}, {list(h.shape)}, got {meta['shape']}")
             fmt = "tribolmp-npy"
             if pixel_size is not None:
                 pixel, source = pixel_size, "override" if "pixel_size_m" not in meta else "file metadata + pixel size (override)"
