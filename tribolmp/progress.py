@@ -33,8 +33,8 @@ class Progress:
         Default stderr.
     """
 
-    def __init__(self, label: str, unit: str = "steps", total: int | None = None, interval: float = 2.0,
-                 stream=None):
+    def __init__(self, label: str, unit: str = "steps", total: int | None = None,
+                 interval: float = 2.0, stream=None):
         self.label, self.unit, self.total = label, unit, total
         self.interval = interval
         self.stream = stream

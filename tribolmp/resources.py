@@ -35,7 +35,8 @@ def format_bytes(n: float) -> str:
     return f"{n:.3g} PiB"  # pragma: no cover
 
 
-def check_memory(nbytes: float, field: str, value: object, what: str, source: str | None = None) -> None:
+def check_memory(nbytes: float, field: str, value: object, what: str,
+                 source: str | None = None) -> None:
     """Raise one line when ``nbytes`` of working memory does not fit this machine.
 
     Parameters
@@ -58,5 +59,6 @@ def check_memory(nbytes: float, field: str, value: object, what: str, source: st
     """
     avail = MEMORY_SHARE * physical_memory_bytes()
     if not nbytes <= avail:
-        raise ParameterError(field, f"a size whose working memory fits this machine ({format_bytes(avail)} usable); "
-                             f"{what} would need ~{format_bytes(nbytes)}", value, source)
+        raise ParameterError(field, f"a size whose working memory fits this machine "
+                             f"({format_bytes(avail)} usable); {what} would need ~{format_bytes(nbytes)}",
+                             value, source)

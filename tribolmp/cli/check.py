@@ -13,10 +13,9 @@ def configure(parser) -> None:
 
 def run(args) -> int:
     """Validate; print a summary (or JSON) and return 0, or raise SceneError."""
-    from ..scene import load_scene
-
     from ..chain import plan_scene
     from ..chain.runner import preflight
+    from ..scene import load_scene
 
     scene = load_scene(args.scene)
     # Everything `run` would refuse later is refused here: the plan (cross-stage rules) and
@@ -26,7 +25,8 @@ def run(args) -> int:
     if args.json:
         from . import emit_json
 
-        emit_json({"valid": True, "source": scene.source, "sections": scene.to_dict(), "notes": notes})
+        emit_json({"valid": True, "source": scene.source, "sections": scene.to_dict(),
+                   "notes": notes})
     else:
         present = [k for k, v in scene.to_dict().items()]
         print(f"{args.scene}: OK ({', '.join(present)}); E* = {scene.effective_modulus:.4g} Pa")

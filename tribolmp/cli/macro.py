@@ -117,7 +117,6 @@ def _stick_slip(args, scene) -> dict:
 
 def _oscillate(args, scene) -> dict:
     from ..models.macro import oscillation_from_scene
-
     from ..progress import Progress
 
     res = oscillation_from_scene(scene, args.amplitude, frequency=args.frequency, cycles=args.cycles,

@@ -73,7 +73,7 @@ class Topography(Stage):
                        options={**decision.options, "rates_source": src})
 
     def preflight(self, scene, decision: Decision) -> list[str]:
-        """The Eq. 23 grid against this machine's memory, and the evolution's cost."""
+        """Check the Eq. 23 grid against this machine's memory; note the evolution's cost."""
         from ...resources import check_memory
 
         t = scene.topography
