@@ -59,6 +59,6 @@ def check_memory(nbytes: float, field: str, value: object, what: str,
     """
     avail = MEMORY_SHARE * physical_memory_bytes()
     if not nbytes <= avail:
+        need = f"{what} would need ~{format_bytes(nbytes)}"
         raise ParameterError(field, f"a size whose working memory fits this machine "
-                             f"({format_bytes(avail)} usable); {what} would need ~{format_bytes(nbytes)}",
-                             value, source)
+                             f"({format_bytes(avail)} usable); {need}", value, source)
