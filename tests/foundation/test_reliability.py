@@ -379,3 +379,49 @@ def test_scene_surface_without_sidecar_says_where_its_pixel_size_comes_from(tmp_
     proc = cli("check", scene)
     assert proc.returncode == 0, proc.stderr
     assert "no sidecar" in proc.stdout and "[roughness].pixel_size = 1e-06 m" in proc.stdout
+
+
+# --- a full disk: one line, exit 3, and a rerun finishes (nothing poisoned)
+def test_full_disk_is_one_line_and_the_folder_recovers(tmp_path):
+    """RLIMIT_FSIZE makes every write past 4 kB fail with EFBIG, as a full disk fails with ENOSPC.
+
+    (CPython ignores SIGXFSZ, so the write raises instead of killing the process.)
+    """
+    import resource
+
+    def small_files():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (4000, 4000))
+
+    out = tmp_path / "o"
+    cmd = [sys.executable, "-m", "tribolmp", "run", RATES_GIVEN, "--out", str(out), "--quiet", "--no-figures"]
+    proc = subprocess.run(cmd, preexec_fn=small_files, capture_output=True, text=True, timeout=300)
+    assert_one_line(proc, 3)
+    assert str(out) in proc.stderr  # names the file it could not write
+    again = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    assert again.returncode == 0, again.stderr
+    report = json.loads((out / "report.json").read_text())
+    assert report["complete"] and all(s["ran"] for s in report["stages"] if s["name"] != "nanoscale"
+                                      and s["name"] != "lubrication")
+
+
+def _can_mount_tmpfs(path) -> bool:
+    probe = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1m", "tmpfs", str(path)], capture_output=True)
+    if probe.returncode == 0:
+        subprocess.run(["umount", str(path)], check=True)
+        return True
+    return False
+
+
+def test_read_only_cache_dir_is_one_line(tmp_path):
+    """A cache folder on a read-only file system (a root user ignores chmod, so mount one)."""
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    if not _can_mount_tmpfs(ro):
+        pytest.skip("needs permission to mount a read-only tmpfs (root with CAP_SYS_ADMIN)")
+    subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1m,ro", "tmpfs", str(ro)], check=True)
+    try:
+        proc = cli("run", RATES_GIVEN, "--out", tmp_path / "o", "--cache-dir", ro / "cache", "--quiet")
+        assert_one_line(proc, 2)
+        assert "--cache-dir" in proc.stderr
+    finally:
+        subprocess.run(["umount", str(ro)], check=True)

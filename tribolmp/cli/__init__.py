@@ -112,8 +112,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         # A file system failure while running (disk full, a folder made read-only meanwhile):
         # a run failure, said in one line with the path; user-given paths are checked up front
         # and exit 2 before this can happen.
-        where = f" ({exc.filename})" if getattr(exc, "filename", None) else ""
-        print(f"tribolmp {args.command}: {exc.strerror or exc}{where}", file=sys.stderr)
+        name = getattr(exc, "filename", None)
+        what = f"cannot write or read {name}: " if name else "file system error: "
+        print(f"tribolmp {args.command}: {what}{exc.strerror or exc}", file=sys.stderr)
         return EXIT_RUN
 
 
