@@ -37,5 +37,5 @@ def versions(names: tuple[str, ...] = DEPENDENCIES) -> dict[str, str]:
 
 
 def data_path(*parts: str) -> Path:
-    """Path of a file shipped in ``tribolmp/data/`` (e.g. ``data_path("scenes", "default.toml")``)."""
+    """Return the path of a file shipped in ``tribolmp/data/`` (``data_path("scenes", "x.toml")``)."""
     return Path(str(resources.files("tribolmp").joinpath("data", *parts)))

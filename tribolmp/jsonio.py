@@ -42,7 +42,7 @@ __all__ = [
 
 
 def _numpy_like(value: Any) -> Any:
-    """numpy array -> list, numpy scalar -> Python scalar; anything else unchanged."""
+    """Convert a numpy array to a list and a numpy scalar to a Python scalar; pass anything else."""
     if type(value).__module__ == "numpy":
         if hasattr(value, "tolist"):
             return value.tolist()
@@ -159,7 +159,7 @@ def scalars(d: Mapping[str, Any], max_len: int = 64) -> dict[str, Any]:
 
 
 def _umask() -> int:
-    """The process umask (read by setting and restoring it: POSIX has no getter)."""
+    """Return the process umask (read by setting and restoring it: POSIX has no getter)."""
     mask = os.umask(0o022)
     os.umask(mask)
     return mask

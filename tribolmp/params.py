@@ -328,9 +328,15 @@ def build_dataclass(cls: type, data: dict, prefix: str = "", source: str | None 
     names = {f.name: f for f in dataclasses.fields(cls) if f.init}
     for key in data:
         if key not in names:
-            raise ParameterError(prefix + str(key), f"one of the known keys {sorted(names)}", "unknown key", source)
+            raise ParameterError(
+                prefix + str(key), f"one of the known keys {sorted(names)}", "unknown key", source
+            )
     for name, f in names.items():
-        if name not in data and f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
+        if (
+            name not in data
+            and f.default is dataclasses.MISSING
+            and f.default_factory is dataclasses.MISSING
+        ):
             raise ParameterError(prefix + name, "a value (this key is required)", "nothing", source)
     try:
         return cls(**data)

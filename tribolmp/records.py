@@ -59,47 +59,105 @@ class Rates:
     """
 
     # -- friction
-    mu: float | None = param(None, unit="1", lo=0.0, hi=10.0, doc="Friction coefficient (F_t / F_n).")
+    mu: float | None = param(
+        None, unit="1", lo=0.0, hi=10.0, doc="Friction coefficient (F_t / F_n)."
+    )
     mu_err: float | None = param(None, unit="1", lo=0.0, doc="Standard error of mu.")
-    mu_static: float | None = param(None, unit="1", lo=0.0, hi=10.0, doc="Static friction coefficient, when known.")
-    mu_kinetic: float | None = param(None, unit="1", lo=0.0, hi=10.0, doc="Kinetic friction coefficient, when known.")
+    mu_static: float | None = param(
+        None, unit="1", lo=0.0, hi=10.0, doc="Static friction coefficient, when known."
+    )
+    mu_kinetic: float | None = param(
+        None, unit="1", lo=0.0, hi=10.0, doc="Kinetic friction coefficient, when known."
+    )
     # -- Eq. 23 coefficients, 1D profile (CONTRACTS.md C1)
-    mu_per_s: float | None = param(None, unit="1/s", lo=0.0, doc="Eq. 23 wear (relaxation) rate mu of gamma(k) = mu + D0 k^2.")
+    mu_per_s: float | None = param(
+        None, unit="1/s", lo=0.0, doc="Eq. 23 wear (relaxation) rate mu of gamma(k) = mu + D0 k^2."
+    )
     mu_per_s_err: float | None = param(None, unit="1/s", lo=0.0, doc="Standard error of mu_per_s.")
     d0_m2_s: float | None = param(None, unit="m^2/s", lo=0.0, doc="Eq. 23 surface diffusion D0.")
     d0_m2_s_err: float | None = param(None, unit="m^2/s", lo=0.0, doc="Standard error of d0_m2_s.")
-    dz: float | None = param(None, unit="m^3/s", lo=0.0, doc="Eq. 23 non-conserved noise Dz of the 1D profile.")
+    dz: float | None = param(
+        None, unit="m^3/s", lo=0.0, doc="Eq. 23 non-conserved noise Dz of the 1D profile."
+    )
     dz_err: float | None = param(None, unit="m^3/s", lo=0.0, doc="Standard error of dz.")
-    dx_l2: float | None = param(None, unit="m^5/s", lo=0.0, doc="Eq. 23 conserved noise Dx l^2 of the 1D profile.")
+    dx_l2: float | None = param(
+        None, unit="m^5/s", lo=0.0, doc="Eq. 23 conserved noise Dx l^2 of the 1D profile."
+    )
     dx_l2_err: float | None = param(None, unit="m^5/s", lo=0.0, doc="Standard error of dx_l2.")
     # -- microscopic rates (ranges as the [rates] scene section has always had)
-    diffusion_m2_s: float | None = param(None, unit="m^2/s", lo=0.0, hi=1e3, doc="Lateral diffusion coefficient D of surface automata.")
-    transfer_rate: float | None = param(None, unit="1/m", lo=0.0, hi=1e12, doc="Transferred fraction of surface automata per sliding distance.")
-    wear_rate: float | None = param(None, unit="1/s", lo=0.0, hi=1e12, doc="transfer_rate times the MCA sliding velocity.")
-    detachment_rate: float | None = param(None, unit="1/s", lo=0.0, doc="Automata leaving their body, per surface automaton per second.")
-    reattachment_rate: float | None = param(None, unit="1/s", lo=0.0, doc="Automata joining a body, per layer automaton per second.")
-    layer_depth_m: float | None = param(None, unit="m", lo=0.0, hi=1e-3, doc="Quasi-liquid (sheared) layer depth.")
-    step_length_m: float | None = param(None, unit="m", lo=0.0, lo_open=True, hi=1e-3, doc="Elementary step length l.")
-    step_time_s: float | None = param(None, unit="s", lo=0.0, lo_open=True, hi=1e6, doc="Elementary step time tau.")
+    diffusion_m2_s: float | None = param(
+        None,
+        unit="m^2/s",
+        lo=0.0,
+        hi=1e3,
+        doc="Lateral diffusion coefficient D of surface automata.",
+    )
+    transfer_rate: float | None = param(
+        None,
+        unit="1/m",
+        lo=0.0,
+        hi=1e12,
+        doc="Transferred fraction of surface automata per sliding distance.",
+    )
+    wear_rate: float | None = param(
+        None, unit="1/s", lo=0.0, hi=1e12, doc="transfer_rate times the MCA sliding velocity."
+    )
+    detachment_rate: float | None = param(
+        None,
+        unit="1/s",
+        lo=0.0,
+        doc="Automata leaving their body, per surface automaton per second.",
+    )
+    reattachment_rate: float | None = param(
+        None, unit="1/s", lo=0.0, doc="Automata joining a body, per layer automaton per second."
+    )
+    layer_depth_m: float | None = param(
+        None, unit="m", lo=0.0, hi=1e-3, doc="Quasi-liquid (sheared) layer depth."
+    )
+    step_length_m: float | None = param(
+        None, unit="m", lo=0.0, lo_open=True, hi=1e-3, doc="Elementary step length l."
+    )
+    step_time_s: float | None = param(
+        None, unit="s", lo=0.0, lo_open=True, hi=1e6, doc="Elementary step time tau."
+    )
     # -- conditions of the measurement
-    pressure_Pa: float | None = param(None, unit="Pa", lo=0.0, doc="Normal pressure of the MCA run.")
-    sliding_velocity_m_s: float | None = param(None, unit="m/s", lo=0.0, doc="Sliding velocity of the MCA run.")
+    pressure_Pa: float | None = param(
+        None, unit="Pa", lo=0.0, doc="Normal pressure of the MCA run."
+    )
+    sliding_velocity_m_s: float | None = param(
+        None, unit="m/s", lo=0.0, doc="Sliding velocity of the MCA run."
+    )
     law: str | None = param(None, doc="Bond law of the MCA run.")
     dim: int | None = param(None, choices=(1, 2, 3), doc="Spatial dimension of the MCA run.")
-    automaton_diameter_m: float | None = param(None, unit="m", lo=0.0, lo_open=True, doc="Automaton diameter d.")
-    slab_thickness_m: float | None = param(None, unit="m", lo=0.0, lo_open=True,
-                                           doc="Thickness of the 2D MCA slab (1D-to-surface conversion); None = the chain's default.")
+    automaton_diameter_m: float | None = param(
+        None, unit="m", lo=0.0, lo_open=True, doc="Automaton diameter d."
+    )
+    slab_thickness_m: float | None = param(
+        None,
+        unit="m",
+        lo=0.0,
+        lo_open=True,
+        doc="Thickness of the 2D MCA slab (1D-to-surface conversion); None = the chain's default.",
+    )
     # -- provenance
-    source: str = param("", doc="Where the values come from (file, stage or scene section), one line.")
-    flagged: tuple[str, ...] = param((), doc="Fields their producer marked not valid (C1 valid: false).")
-    modes_used: tuple[int, ...] | None = param(None, doc="Wavenumber modes used by the Eq. 23 fit (C1).")
+    source: str = param(
+        "", doc="Where the values come from (file, stage or scene section), one line."
+    )
+    flagged: tuple[str, ...] = param(
+        (), doc="Fields their producer marked not valid (C1 valid: false)."
+    )
+    modes_used: tuple[int, ...] | None = param(
+        None, doc="Wavenumber modes used by the Eq. 23 fit (C1)."
+    )
     warnings: tuple[str, ...] = param((), doc="Producer's warnings, one line each.")
 
     def __post_init__(self) -> None:
         validate_dataclass(self, prefix="rates.")
         bad = [f for f in self.flagged if f not in _FIELD_NAMES]
         if bad:
-            raise ParameterError("rates.flagged", f"names of Rates fields {sorted(_FIELD_NAMES)}", bad)
+            raise ParameterError(
+                "rates.flagged", f"names of Rates fields {sorted(_FIELD_NAMES)}", bad
+            )
 
     # ---------------------------------------------------------------- build
 
@@ -135,11 +193,17 @@ class Rates:
         kwargs: dict[str, Any] = {}
         for key, value in flat.items():
             name = RATES_ALIASES.get(key, key)
-            if name in _FIELD_NAMES and name not in ("flagged",) and (name not in kwargs or key == name):
+            if (
+                name in _FIELD_NAMES
+                and name not in ("flagged",)
+                and (name not in kwargs or key == name)
+            ):
                 kwargs[name] = tuple(value) if isinstance(value, list) else value
         valid = data.get("valid")
         if isinstance(valid, Mapping):
-            kwargs["flagged"] = tuple(sorted({*kwargs.get("flagged", ()), *(k for k, ok in valid.items() if ok is False)}))
+            kwargs["flagged"] = tuple(
+                sorted({*kwargs.get("flagged", ()), *(k for k, ok in valid.items() if ok is False)})
+            )
         if source is not None:
             kwargs["source"] = source
         kwargs.setdefault("source", "")
@@ -150,11 +214,15 @@ class Rates:
     @classmethod
     def units(cls) -> dict[str, str]:
         """SI unit of every numeric field (``"1"`` for dimensionless)."""
-        return {f.name: f.metadata["unit"] for f in dataclasses.fields(cls) if f.metadata.get("unit")}
+        return {
+            f.name: f.metadata["unit"] for f in dataclasses.fields(cls) if f.metadata.get("unit")
+        }
 
     def to_dict(self, *, with_units: bool = True) -> dict[str, Any]:
-        """Plain dict of all fields (tuples as lists), plus ``units`` unless ``with_units`` is False."""
-        out = {k: (list(v) if isinstance(v, tuple) else v) for k, v in dataclasses.asdict(self).items()}
+        """Return all fields as a plain dict (tuples as lists), with ``units`` unless disabled."""
+        out = {
+            k: (list(v) if isinstance(v, tuple) else v) for k, v in dataclasses.asdict(self).items()
+        }
         if with_units:
             out["units"] = {k: u for k, u in self.units().items() if out.get(k) is not None}
         return out
@@ -165,13 +233,15 @@ class Rates:
         return all(getattr(self, k) is not None for k in RATES_GROUPS["eq23"])
 
     def require(self, *names: str) -> tuple[float, ...]:
-        """Return the named values, or raise a one-line ParameterError naming the first missing one."""
+        """Return the named values; raise a one-line ParameterError naming the first missing one."""
         out = []
         for n in names:
             v = getattr(self, n)
             if v is None:
                 where = f" ({self.source})" if self.source else ""
-                raise ParameterError(f"rates.{n}", f"a value{where}", "nothing (not measured or not given)")
+                raise ParameterError(
+                    f"rates.{n}", f"a value{where}", "nothing (not measured or not given)"
+                )
             out.append(v)
         return tuple(out)
 
@@ -183,9 +253,24 @@ RATES_GROUPS: dict[str, tuple[str, ...]] = {
     "friction": ("mu", "mu_err", "mu_static", "mu_kinetic"),
     "eq23": ("mu_per_s", "d0_m2_s", "dz", "dx_l2"),
     "eq23_err": ("mu_per_s_err", "d0_m2_s_err", "dz_err", "dx_l2_err"),
-    "microscopic": ("diffusion_m2_s", "transfer_rate", "wear_rate", "detachment_rate", "reattachment_rate",
-                    "layer_depth_m", "step_length_m", "step_time_s"),
-    "conditions": ("pressure_Pa", "sliding_velocity_m_s", "law", "dim", "automaton_diameter_m", "slab_thickness_m"),
+    "microscopic": (
+        "diffusion_m2_s",
+        "transfer_rate",
+        "wear_rate",
+        "detachment_rate",
+        "reattachment_rate",
+        "layer_depth_m",
+        "step_length_m",
+        "step_time_s",
+    ),
+    "conditions": (
+        "pressure_Pa",
+        "sliding_velocity_m_s",
+        "law",
+        "dim",
+        "automaton_diameter_m",
+        "slab_thickness_m",
+    ),
     "provenance": ("source", "flagged", "modes_used", "warnings"),
 }
 

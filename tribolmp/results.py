@@ -101,7 +101,7 @@ class MethodRegistry:
     _methods: dict[str, Callable[..., Any]] = field(default_factory=dict)
 
     def register(self, name: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
-        """Decorator registering ``func`` under ``name``."""
+        """Register the decorated function under ``name``."""
 
         def deco(func: Callable[..., Any]) -> Callable[..., Any]:
             if name in self._methods:

@@ -9,7 +9,11 @@ from tribolmp.chain.cache import StageCache, atomic_write_json, canonical_json, 
 
 def test_key_depends_on_every_input(tmp_path):
     c = StageCache(tmp_path)
-    base = {"sections": {"topography": {"dx": 1e-8}}, "upstream": {"nanoscale": "abc"}, "seed": [1, 1]}
+    base = {
+        "sections": {"topography": {"dx": 1e-8}},
+        "upstream": {"nanoscale": "abc"},
+        "seed": [1, 1],
+    }
     k = c.key("topography", base)
     assert k == c.key("topography", json.loads(json.dumps(base)))  # same content, new objects
     assert k != c.key("contact", base)
@@ -75,8 +79,13 @@ def test_code_closure_is_computed_from_the_imports():
     from tribolmp.chain.registry import REGISTRY
     from tribolmp.chain.stage import PACKAGE_ROOT, code_closure
 
-    rel = {s.name: {str(p.relative_to(PACKAGE_ROOT)) for p in code_closure(type(s).__module__, s.data)} for s in REGISTRY}
-    assert {"params.py", "scene/schema.py", "rng.py", "models/topography/spde.py"} <= rel["topography"]
+    rel = {
+        s.name: {str(p.relative_to(PACKAGE_ROOT)) for p in code_closure(type(s).__module__, s.data)}
+        for s in REGISTRY
+    }
+    assert {"params.py", "scene/schema.py", "rng.py", "models/topography/spde.py"} <= rel[
+        "topography"
+    ]
     assert any(p.startswith("models/lubrication/") for p in rel["macroscale"])
     assert any(p.startswith("lammps/") for p in rel["nanoscale"])
     assert any(p.startswith("analysis/") for p in rel["nanoscale"])
@@ -85,7 +94,11 @@ def test_code_closure_is_computed_from_the_imports():
         assert f"chain/stages/{name}.py" in files
         others = {f"chain/stages/{o}.py" for o in rel if o != name}
         assert not files & others, (name, files & others)
-        assert "chain/registry.py" not in files and "chain/planner.py" not in files and "chain/runner.py" not in files
+        assert (
+            "chain/registry.py" not in files
+            and "chain/planner.py" not in files
+            and "chain/runner.py" not in files
+        )
 
 
 def test_code_hash_changes_with_an_imported_source(tmp_path, monkeypatch):

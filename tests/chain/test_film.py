@@ -17,7 +17,7 @@ def _lubricated():
 
 
 def _dry(scene):
-    """The same body without oil (and without asking for the lubrication output)."""
+    """Return the same body without oil (and without asking for the lubrication output)."""
     req = tuple(r for r in scene.outputs.requested if r != "lubrication")
     return dataclasses.replace(scene, lubricant=None, outputs=dataclasses.replace(scene.outputs, requested=req))
 

@@ -16,7 +16,12 @@ def test_precedence_nanoscale_then_rates_then_load():
     dry = dataclasses.replace(given, rates=None)
     measured = Rates(mu=0.21, mu_static=0.25, source="nanoscale stage k (rates.json)")
     c = friction_coefficient(given, measured)
-    assert (c.mu, c.mu_static, c.mu_kinetic, c.source) == (0.21, 0.25, 0.21, "nanoscale stage k (rates.json)")
+    assert (c.mu, c.mu_static, c.mu_kinetic, c.source) == (
+        0.21,
+        0.25,
+        0.21,
+        "nanoscale stage k (rates.json)",
+    )
     c = friction_coefficient(given)
     assert (c.mu, c.source) == (0.16, "[rates].mu")
     c = friction_coefficient(dry)

@@ -20,7 +20,7 @@ from tribolmp.scene import load_scene, scene_path
 
 
 def with_run(stage, fn):
-    """A copy of ``stage`` whose ``run`` is ``fn`` (same module, so the same code closure and key)."""
+    """Return a copy of ``stage`` whose ``run`` is ``fn`` (same module, so the same code closure and key)."""
     cls = type(stage)
     return type(cls.__name__, (cls,), {"run": lambda self, ctx: fn(ctx), "__module__": cls.__module__})()
 

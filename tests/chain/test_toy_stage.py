@@ -43,13 +43,18 @@ class Toy(Stage):
     figures = (Figure("toy", "toy_table", _draw, "toy figure", "A toy figure"),)
 
     def plan(self, scene, demand: Demand) -> Decision:
-        return self.go("toy: summarises the contact stiffness", sections=self.sections, consumes=("stiffness",))
+        return self.go(
+            "toy: summarises the contact stiffness", sections=self.sections, consumes=("stiffness",)
+        )
 
     def run(self, ctx: StageContext) -> StageOutput:
         n = len(ctx.handoff_file("stiffness").read_bytes())
         np.savez(ctx.workdir / "toy.npz", x=np.arange(3.0), y=2.0 * n * np.arange(3.0))
-        return StageOutput(values={"bytes": n, "draw": float(ctx.rng.random())}, units={"bytes": "1"},
-                           files={"toy_table": "toy.npz"})
+        return StageOutput(
+            values={"bytes": n, "draw": float(ctx.rng.random())},
+            units={"bytes": "1"},
+            files={"toy_table": "toy.npz"},
+        )
 
 
 def _rows(out):
@@ -60,12 +65,16 @@ def test_planner_binds_the_toy_stage_and_leaves_the_others_alone():
     scene = _scene()
     base = plan_scene(scene, registry=planner_mod.REGISTRY)
     toyed = plan_scene(scene, registry=planner_mod.REGISTRY.inserted(Toy(), after="macroscale"))
-    assert [d.name for d in toyed.stages] == [*base.registry.names[:5], "toy", base.registry.names[5]]
+    assert [d.name for d in toyed.stages] == [
+        *base.registry.names[:5],
+        "toy",
+        base.registry.names[5],
+    ]
     toy = toyed["toy"]
     assert toy.run and toy.needs == ("contact",) and toy.supplied == {"stiffness": "contact"}
     for d in base.stages:
         assert toyed[d.name].to_json_dict() == d.to_json_dict(), d.name
-    # Seeds come from names, not positions: inserting the toy before tribospectroscopy shifts nothing.
+    # Seeds come from names, not positions: the toy before tribospectroscopy shifts nothing.
     assert stage_seed(1, "tribospectroscopy") != stage_seed(1, "toy")
 
 
@@ -89,16 +98,24 @@ def test_toy_stage_runs_reports_and_caches_without_other_edits(tmp_path, calls):
     row = next(r for r in rep["stages"] if r["name"] == "toy")
     assert row["ran"] is True and row["reason"].startswith("toy:")
     assert rep["results"]["toy"]["values"]["bytes"] > 0
-    assert rep["stage_details"]["toy"]["upstream"] == {"contact": f"{second.result('contact').key}:"
-                                                       f"{second.result('contact').record['output_id']}"}
-    assert rep["figures"]["toy"] == "figures/toy.png" and (out / "figures" / "toy.png").stat().st_size > 0
+    assert rep["stage_details"]["toy"]["upstream"] == {
+        "contact": f"{second.result('contact').key}:{second.result('contact').record['output_id']}"
+    }
+    assert (
+        rep["figures"]["toy"] == "figures/toy.png"
+        and (out / "figures" / "toy.png").stat().st_size > 0
+    )
     assert "A toy figure" in (out / "report.md").read_text()
 
     # The cache handles it like any stage: a third run reuses it; --force toy recomputes only it.
     third = runner_mod.run_chain(_scene(), out, quiet=True, figures=False, registry=registry)
     assert third.entries["toy"].status == "cached"
-    forced = runner_mod.run_chain(_scene(), out, quiet=True, figures=False, registry=registry, force=["toy"])
-    assert forced.entries["toy"].status == "computed" and forced.entries["contact"].status == "cached"
+    forced = runner_mod.run_chain(
+        _scene(), out, quiet=True, figures=False, registry=registry, force=["toy"]
+    )
+    assert (
+        forced.entries["toy"].status == "computed" and forced.entries["contact"].status == "cached"
+    )
 
 
 def test_cli_force_choices_are_the_registry():

@@ -24,25 +24,49 @@ from tribolmp.records import RATES_GROUPS, Rates
 
 def test_rates_record_reads_rates_json_and_c1_fields():
     data = {
-        "mu": 0.16, "mu_err": 0.07, "diffusion_m2_s": 5.3e-11, "step_length_m": 4.3e-9, "step_time_s": 3.5e-7,
-        "velocity_m_s": 5.0, "pressure_Pa": 1.5e8, "dimension": 2, "units": {"mu": "1"}, "warnings": ["w"],
-        "mu_per_s": 1.0, "d0_m2_s": 2e-18, "dz": 3e-30, "dx_l2": 4e-45, "valid": {"dz": False, "mu_per_s": True},
-        "modes_used": [1, 2, 3], "layer_persistence": {"x": [1]},
+        "mu": 0.16,
+        "mu_err": 0.07,
+        "diffusion_m2_s": 5.3e-11,
+        "step_length_m": 4.3e-9,
+        "step_time_s": 3.5e-7,
+        "velocity_m_s": 5.0,
+        "pressure_Pa": 1.5e8,
+        "dimension": 2,
+        "units": {"mu": "1"},
+        "warnings": ["w"],
+        "mu_per_s": 1.0,
+        "d0_m2_s": 2e-18,
+        "dz": 3e-30,
+        "dx_l2": 4e-45,
+        "valid": {"dz": False, "mu_per_s": True},
+        "modes_used": [1, 2, 3],
+        "layer_persistence": {"x": [1]},
     }
     r = Rates.from_mapping(data, source="rates.json")
     assert (r.mu, r.sliding_velocity_m_s, r.dim, r.pressure_Pa) == (0.16, 5.0, 2, 1.5e8)
     assert r.flagged == ("dz",) and r.modes_used == (1, 2, 3) and r.warnings == ("w",)
     assert r.has_eq23 and r.source == "rates.json"
     # a C1 conditions block is flattened
-    c = Rates.from_mapping({"conditions": {"pressure_Pa": 1e8, "sliding_velocity_m_s": 1.0, "law": "bpm", "dim": 2}})
+    c = Rates.from_mapping(
+        {"conditions": {"pressure_Pa": 1e8, "sliding_velocity_m_s": 1.0, "law": "bpm", "dim": 2}}
+    )
     assert (c.pressure_Pa, c.sliding_velocity_m_s, c.law, c.dim) == (1e8, 1.0, "bpm", 2)
     assert not c.has_eq23
     with pytest.raises(ParameterError, match=r"rates\.mu_per_s"):
         c.require("mu_per_s")
 
 
-@pytest.mark.parametrize(("field", "value"), [("mu", -0.1), ("mu", math.nan), ("step_time_s", 0.0), ("dz", -1.0),
-                                              ("dim", 4), ("flagged", ("nonsense",))])
+@pytest.mark.parametrize(
+    ("field", "value"),
+    [
+        ("mu", -0.1),
+        ("mu", math.nan),
+        ("step_time_s", 0.0),
+        ("dz", -1.0),
+        ("dim", 4),
+        ("flagged", ("nonsense",)),
+    ],
+)
 def test_rates_record_rejects_bad_values(field, value):
     with pytest.raises(ParameterError, match=rf"rates\.{field}"):
         Rates(**{field: value})
@@ -50,7 +74,11 @@ def test_rates_record_rejects_bad_values(field, value):
 
 def test_rates_units_cover_every_numeric_field():
     units = Rates.units()
-    numeric = {f.name for f in dataclasses.fields(Rates)} - set(RATES_GROUPS["provenance"]) - {"law", "dim"}
+    numeric = (
+        {f.name for f in dataclasses.fields(Rates)}
+        - set(RATES_GROUPS["provenance"])
+        - {"law", "dim"}
+    )
     assert set(units) == numeric
     assert units["dx_l2"] == "m^5/s" and units["dz"] == "m^3/s" and units["mu_per_s"] == "1/s"
     assert set(sum(RATES_GROUPS.values(), ())) == {f.name for f in dataclasses.fields(Rates)}
@@ -81,10 +109,23 @@ def test_analysis_units_agree_with_the_record():
 
 
 def test_jsonable_sanitises_numpy_nan_and_paths(tmp_path):
-    obj = {"a": np.arange(3), "b": np.float64("nan"), "c": (1, np.int64(2)), 3: tmp_path, "d": np.bool_(True),
-           "e": [math.inf, 1.5]}
+    obj = {
+        "a": np.arange(3),
+        "b": np.float64("nan"),
+        "c": (1, np.int64(2)),
+        3: tmp_path,
+        "d": np.bool_(True),
+        "e": [math.inf, 1.5],
+    }
     out = jsonable(obj)
-    assert out == {"a": [0, 1, 2], "b": None, "c": [1, 2], "3": str(tmp_path), "d": True, "e": [None, 1.5]}
+    assert out == {
+        "a": [0, 1, 2],
+        "b": None,
+        "c": [1, 2],
+        "3": str(tmp_path),
+        "d": True,
+        "e": [None, 1.5],
+    }
     json.loads(dumps(obj))  # strict JSON
     p = atomic_write_json(tmp_path / "x" / "r.json", obj)
     assert json.loads(p.read_text()) == out and not list(p.parent.glob(".*tmp"))
@@ -98,10 +139,15 @@ def test_canonical_json_distinguishes_nan_and_is_order_free():
 
 
 def test_small_helpers():
-    assert finite_or_none("2.5") == 2.5 and finite_or_none(math.nan) is None and finite_or_none(None) is None
+    assert (
+        finite_or_none("2.5") == 2.5
+        and finite_or_none(math.nan) is None
+        and finite_or_none(None) is None
+    )
     assert finite_or_none(True) is None
-    assert scalars({"a": np.float32(1.5), "b": np.zeros(100), "c": [1, 2], "d": "s", "e": math.nan}) == {
-        "a": 1.5, "c": [1, 2], "d": "s", "e": None}
+    assert scalars(
+        {"a": np.float32(1.5), "b": np.zeros(100), "c": [1, 2], "d": "s", "e": math.nan}
+    ) == {"a": 1.5, "c": [1, 2], "d": "s", "e": None}
     assert check_range("x", np.float64(2.0), 0, 3) == 2.0
     with pytest.raises(ParameterError, match=r"x: expected a number in \(0, inf\) Pa"):
         check_range("x", 0.0, 0.0, None, lo_open=True, unit="Pa")

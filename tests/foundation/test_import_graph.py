@@ -3,11 +3,13 @@
 Layers, bottom to top (STYLE: foundations <- scene <- models <- analysis/lammps
 <- chain <- cli)::
 
-    0 foundations   tribolmp/__init__, errors, units, rng, params, jsonio, results, records, locking,
+    0 foundations   tribolmp/__init__, errors, units, rng, params, jsonio, results, records,
+                    locking,
                     environment, benchmarking
     1 scene         tribolmp.scene
     2 models        tribolmp.models
-    3 analysis, lammps  (lammps may call the analysis; the analysis imports neither lammps nor the models)
+    3 analysis, lammps  (lammps may call the analysis; the analysis imports neither lammps
+                        nor the models)
     4 chain         tribolmp.chain
     5 cli           tribolmp.cli, tribolmp.__main__
 
@@ -28,7 +30,21 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2] / "tribolmp"
 
-FOUNDATIONS = {"tribolmp", "errors", "units", "rng", "params", "jsonio", "results", "records", "environment", "benchmarking", "locking", "progress", "resources"}
+FOUNDATIONS = {
+    "tribolmp",
+    "errors",
+    "units",
+    "rng",
+    "params",
+    "jsonio",
+    "results",
+    "records",
+    "environment",
+    "benchmarking",
+    "locking",
+    "progress",
+    "resources",
+}
 LAYER = {"scene": 1, "models": 2, "analysis": 3, "lammps": 3, "chain": 4, "cli": 5, "__main__": 5}
 #: Downward pairs that are still forbidden (importer package, imported package): the analysis reads
 #: LAMMPS output files only and validates with the foundations, not with the models.
@@ -55,11 +71,13 @@ def _layer(module: str) -> int:
     try:
         return LAYER[top]
     except KeyError:
-        raise AssertionError(f"{module}: package {top!r} has no layer; add it to this test's table") from None
+        raise AssertionError(
+            f"{module}: package {top!r} has no layer; add it to this test's table"
+        ) from None
 
 
 def imports_of(path: Path, root: Path) -> list[tuple[int, str]]:
-    """``(line, imported module)`` of every import statement in ``path`` (relative ones resolved)."""
+    """Return ``(line, imported module)`` of every import in ``path`` (relative ones resolved)."""
     mod = _module_name(path, root)
     package = mod if path.name == "__init__.py" else mod.rpartition(".")[0]
     out = []
@@ -81,7 +99,7 @@ def imports_of(path: Path, root: Path) -> list[tuple[int, str]]:
 
 
 def violations(root: Path) -> list[str]:
-    """Every upward import, importlib use in the chain, and ``lammps`` import outside tribolmp.lammps."""
+    """List upward imports, importlib in the chain, ``lammps`` imports outside tribolmp.lammps."""
     found = []
     for path in sorted(root.rglob("*.py")):
         mod = _module_name(path, root)
@@ -89,7 +107,9 @@ def violations(root: Path) -> list[str]:
         for line, target in imports_of(path, root):
             if target == "lammps" or target.startswith("lammps."):
                 if _top(mod) != "lammps":
-                    found.append(f"{where}:{line}: imports the lammps module outside tribolmp/lammps")
+                    found.append(
+                        f"{where}:{line}: imports the lammps module outside tribolmp/lammps"
+                    )
                 continue
             if _top(mod) == "chain" and (target == "importlib" or target.startswith("importlib.")):
                 found.append(f"{where}:{line}: importlib in the chain (use a plain import)")
@@ -100,7 +120,10 @@ def violations(root: Path) -> list[str]:
             if a == b:
                 continue
             if _layer(target) > _layer(mod) or (a, b) in FORBIDDEN_PAIRS:
-                found.append(f"{where}:{line}: {mod} (layer {_layer(mod)}) imports {target} (layer {_layer(target)})")
+                found.append(
+                    f"{where}:{line}: {mod} (layer {_layer(mod)}) imports {target} "
+                    f"(layer {_layer(target)})"
+                )
         if _top(mod) == "chain":
             text = path.read_text()
             for i, row in enumerate(text.splitlines(), 1):
@@ -131,7 +154,10 @@ def _fake_tree(tmp_path: Path, files: dict[str, str]) -> Path:
 @pytest.mark.parametrize(
     ("files", "expected"),
     [
-        ({"scene/fields.py": "from ..models.base import describe_range\n"}, "imports tribolmp.models.base"),
+        (
+            {"scene/fields.py": "from ..models.base import describe_range\n"},
+            "imports tribolmp.models.base",
+        ),
         ({"chain/cache.py": "def f():\n    from ..cli import _clean\n"}, "imports tribolmp.cli"),
         ({"analysis/x.py": "import tribolmp.models.base\n"}, "imports tribolmp.models.base"),
         ({"models/m.py": "from ..chain import runner\n"}, "imports tribolmp.chain"),
@@ -155,6 +181,7 @@ def test_checker_accepts_downward_imports(tmp_path):
         "lammps/l.py": "import lammps\nfrom ..analysis import rates\nfrom ..models import base\n",
         "chain/c.py": "from ..models import m\nfrom ..lammps import l\n",
         "cli/k.py": "import importlib\nfrom ..chain import c\n",
-        "params.py": "", "records.py": "",
+        "params.py": "",
+        "records.py": "",
     }
     assert violations(_fake_tree(tmp_path, ok)) == []

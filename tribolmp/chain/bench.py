@@ -24,7 +24,7 @@ __all__ = ["find_benchmarks_dir", "run_benchmark", "gather"]
 
 
 def find_benchmarks_dir(start: str | Path | None = None) -> Path | None:
-    """The repository's ``benchmarks/`` folder: under ``start`` (default cwd) or next to the package."""
+    """Find the repository's ``benchmarks/`` folder: under ``start`` (default cwd) or next to the package."""
     candidates = []
     if start is not None:
         candidates.append(Path(start))
@@ -185,7 +185,7 @@ def gather(
 
 
 def build_contact_table(results_dir: str | Path) -> dict[str, Any]:
-    """The planner's contact speed-error table, built from the contact benchmark's CSVs.
+    """Build the planner's contact speed-error table from the contact benchmark's CSVs.
 
     Rows per grid ``n`` of ``contact_rough_mdr_vs_bem[_quick].csv`` (the rough
     surface of that benchmark, ``n x n`` pixels, MDR ensemble of 16):

@@ -98,7 +98,7 @@ class StageCache:
         return CachedStage(stage, key, path, record)
 
     def entry_lock(self, stage: str, key: str, *, quiet: bool = False) -> DirLock:
-        """The (unacquired) lock that serialises computing one entry across processes.
+        """Return the (unacquired) lock that serialises computing one entry across processes.
 
         Two runs sharing a cache folder then compute an entry once: the second
         waits, and finds the committed result when it gets the lock.

@@ -32,7 +32,14 @@ from .registry import REGISTRY, STAGES, Registry
 from .stage import Decision, Demand, with_supplied
 from .stages.contact import choose_contact_method, speed_error_table
 
-__all__ = ["STAGES", "StagePlan", "Plan", "plan_scene", "choose_contact_method", "speed_error_table"]
+__all__ = [
+    "STAGES",
+    "StagePlan",
+    "Plan",
+    "plan_scene",
+    "choose_contact_method",
+    "speed_error_table",
+]
 
 #: The planner's per-stage decision (historical name).
 StagePlan = Decision
@@ -62,7 +69,9 @@ class Plan:
         return [s.to_json_dict() for s in self.stages]
 
 
-def plan_scene(scene: Scene, *, table: dict[str, Any] | None = None, registry: Registry | None = None) -> Plan:
+def plan_scene(
+    scene: Scene, *, table: dict[str, Any] | None = None, registry: Registry | None = None
+) -> Plan:
     """Decide which stages run for ``scene`` and why.
 
     Parameters
@@ -85,7 +94,10 @@ def plan_scene(scene: Scene, *, table: dict[str, Any] | None = None, registry: R
         stage requires a hand-off no running stage produces.
     """
     registry = REGISTRY if registry is None else registry
-    demand = Demand(frozenset(scene.outputs.requested), overrides={"contact_table": table} if table is not None else {})
+    demand = Demand(
+        frozenset(scene.outputs.requested),
+        overrides={"contact_table": table} if table is not None else {},
+    )
     decided: dict[str, Decision] = {}
     for stage in reversed(registry.stages):
         d = stage.plan(scene, demand)
@@ -109,8 +121,12 @@ def plan_scene(scene: Scene, *, table: dict[str, Any] | None = None, registry: R
             supplied = {h: producer[h] for h in (*d.consumes, *d.wants) if h in producer}
             missing = [h for h in d.consumes if h not in supplied]
             if missing:
-                raise SceneError(f"stage {stage.name}", f"a stage that produces {missing}", "none runs for this scene",
-                                 scene.source)
+                raise SceneError(
+                    f"stage {stage.name}",
+                    f"a stage that produces {missing}",
+                    "none runs for this scene",
+                    scene.source,
+                )
             d = with_supplied(stage.bind(scene, d, supplied), supplied)
             for h in stage.produced:
                 producer[h] = stage.name

@@ -1,4 +1,4 @@
-"""The ordered registry of chain stages: the one list the planner, runner, report, cache and CLI read.
+"""The ordered registry of chain stages: the one list planner, runner, report, cache and CLI read.
 
 Adding a stage is a new file under ``tribolmp/chain/stages/`` plus one entry
 here, at the position where it runs (after the stages whose hand-offs it
@@ -35,7 +35,9 @@ class Registry:
         for s in self.stages:
             missing = [h for h in s.consumes if h not in produced]
             if missing:
-                raise ValueError(f"stage {s.name!r} consumes {missing}, which no earlier stage produces")
+                raise ValueError(
+                    f"stage {s.name!r} consumes {missing}, which no earlier stage produces"
+                )
             produced.update(s.produced)
 
     @property
@@ -55,8 +57,10 @@ class Registry:
                 return s
         raise KeyError(f"no stage {name!r}; stages are {list(self.names)}")
 
-    def inserted(self, stage: Stage, *, after: str | None = None, before: str | None = None) -> Registry:
-        """A copy with ``stage`` added after (or before) the named stage (default: at the end)."""
+    def inserted(
+        self, stage: Stage, *, after: str | None = None, before: str | None = None
+    ) -> Registry:
+        """Return a copy with ``stage`` added after (or before) the named stage (default: last)."""
         order = list(self.stages)
         if after is not None:
             order.insert(self.names.index(after) + 1, stage)
@@ -67,7 +71,7 @@ class Registry:
         return Registry(order)
 
     def replaced(self, name: str, stage: Stage) -> Registry:
-        """A copy with the stage ``name`` replaced by ``stage``."""
+        """Return a copy with the stage ``name`` replaced by ``stage``."""
         return Registry(stage if s.name == name else s for s in self.stages)
 
 

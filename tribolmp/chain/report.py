@@ -28,7 +28,9 @@ def _rel(path: Path, base: Path) -> str:
         return str(path)
 
 
-def report_dict(run: ChainRun, *, partial: bool = False, figures: dict[str, str] | None = None) -> dict[str, Any]:
+def report_dict(
+    run: ChainRun, *, partial: bool = False, figures: dict[str, str] | None = None
+) -> dict[str, Any]:
     """Assemble the report as a plain dict.
 
     Parameters
@@ -47,10 +49,22 @@ def report_dict(run: ChainRun, *, partial: bool = False, figures: dict[str, str]
         e = run.entries.get(name)
         if e is None:
             sp = run.plan[name]
-            rows.append({"name": name, "ran": False, "reason": "pending" if sp.run else sp.reason, "time_s": 0.0})
+            rows.append(
+                {
+                    "name": name,
+                    "ran": False,
+                    "reason": "pending" if sp.run else sp.reason,
+                    "time_s": 0.0,
+                }
+            )
             continue
         rows.append(e.row())
-        d: dict[str, Any] = {"status": e.status, "key": e.key, "plan_reason": run.plan[name].reason, "options": run.plan[name].options}
+        d: dict[str, Any] = {
+            "status": e.status,
+            "key": e.key,
+            "plan_reason": run.plan[name].reason,
+            "options": run.plan[name].options,
+        }
         if e.cached is not None:
             rec = e.cached.record
             d.update(
@@ -66,7 +80,9 @@ def report_dict(run: ChainRun, *, partial: bool = False, figures: dict[str, str]
                 provenance=rec.get("provenance"),
             )
             results[name] = {"values": rec.get("values", {}), "units": rec.get("units", {})}
-            handoffs[name] = {k: _rel(e.cached.path / v, run.out_dir) for k, v in rec.get("files", {}).items()}
+            handoffs[name] = {
+                k: _rel(e.cached.path / v, run.out_dir) for k, v in rec.get("files", {}).items()
+            }
         details[name] = d
     return {
         "tribolmp_version": versions()["tribolmp"],
@@ -90,9 +106,13 @@ def report_dict(run: ChainRun, *, partial: bool = False, figures: dict[str, str]
     }
 
 
-def write_json(run: ChainRun, *, partial: bool = False, figures: dict[str, str] | None = None) -> Path:
+def write_json(
+    run: ChainRun, *, partial: bool = False, figures: dict[str, str] | None = None
+) -> Path:
     """Write ``report.json`` atomically and return its path."""
-    return atomic_write_json(run.out_dir / "report.json", report_dict(run, partial=partial, figures=figures))
+    return atomic_write_json(
+        run.out_dir / "report.json", report_dict(run, partial=partial, figures=figures)
+    )
 
 
 def write_report(run: ChainRun, *, figures: bool = True) -> Path:
@@ -105,7 +125,9 @@ def write_report(run: ChainRun, *, figures: bool = True) -> Path:
         except Exception as exc:  # noqa: BLE001 - e.g. no matplotlib backend: keep the numbers
             fig_errors = {"all": " ".join(f"{type(exc).__name__}: {exc}".split())}
     data = report_dict(run, figures=figs)
-    data["figure_captions"] = {f.name: f.caption or f.name for _s, f in _figures(run) if f.name in figs}
+    data["figure_captions"] = {
+        f.name: f.caption or f.name for _s, f in _figures(run) if f.name in figs
+    }
     if fig_errors:
         data["figure_errors"] = fig_errors
     atomic_write_json(run.out_dir / "report.json", data)
@@ -130,7 +152,8 @@ def _markdown(data: dict[str, Any]) -> str:
     lines = [
         f"# tribolmp run: {sc['name']}",
         "",
-        f"- scene: `{sc['source']}` (input hash `{sc['input_hash'][:16]}`), master seed {sc['seed']}",
+        f"- scene: `{sc['source']}` (input hash `{sc['input_hash'][:16]}`), "
+        f"master seed {sc['seed']}",
         f"- tribolmp {data['tribolmp_version']}; "
         + ", ".join(f"{k} {v}" for k, v in data["versions"].items() if k != "tribolmp"),
         f"- wall time {data['wall_time_s']:.1f} s; finished {data['created_utc']}",
@@ -142,7 +165,10 @@ def _markdown(data: dict[str, Any]) -> str:
     ]
     for r in data["stages"]:
         status = data["stage_details"].get(r["name"], {}).get("status", "")
-        lines.append(f"| {r['name']} | {'yes' if r['ran'] else 'no'} ({status}) | {r['time_s']:.2f} | {r['reason']} |")
+        lines.append(
+            f"| {r['name']} | {'yes' if r['ran'] else 'no'} ({status}) | {r['time_s']:.2f} "
+            f"| {r['reason']} |"
+        )
     lines += ["", "## Results (SI units)", ""]
     for name, res in data["results"].items():
         lines += [f"### {name}", "", "| quantity | value | unit |", "|---|---|---|"]
@@ -158,9 +184,18 @@ def _markdown(data: dict[str, Any]) -> str:
     if data["figures"]:
         lines += ["## Figures", ""]
         for name, path in data["figures"].items():
-            lines += [f"![{name}]({path})", "", f"*{data.get('figure_captions', {}).get(name, name)}*", ""]
+            lines += [
+                f"![{name}]({path})",
+                "",
+                f"*{data.get('figure_captions', {}).get(name, name)}*",
+                "",
+            ]
     if data.get("figure_errors"):
-        lines += ["Figures not drawn: " + "; ".join(f"{k}: {v}" for k, v in data["figure_errors"].items()), ""]
+        lines += [
+            "Figures not drawn: "
+            + "; ".join(f"{k}: {v}" for k, v in data["figure_errors"].items()),
+            "",
+        ]
     return "\n".join(lines)
 
 

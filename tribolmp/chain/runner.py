@@ -51,7 +51,7 @@ class StageEntry:
     error: BaseException | None = None
 
     def row(self) -> dict[str, Any]:
-        """The contract row ``{"name", "ran", "reason", "time_s"}``."""
+        """Return the contract row ``{"name", "ran", "reason", "time_s"}``."""
         return {"name": self.name, "ran": self.ran, "reason": self.reason, "time_s": round(self.time_s, 6)}
 
 
@@ -68,7 +68,7 @@ class ChainRun:
     complete: bool = False
 
     def result(self, name: str) -> CachedStage | None:
-        """The committed result of stage ``name`` (None if it did not run)."""
+        """Return the committed result of stage ``name`` (None if it did not run)."""
         e = self.entries.get(name)
         return e.cached if e is not None and e.ran else None
 

@@ -166,7 +166,7 @@ class Decision:
     supplied: dict[str, str] = field(default_factory=dict)
 
     def to_json_dict(self) -> dict[str, Any]:
-        """Plain dict for report.json (``name, run, reason, needs, sections, options`` + hand-offs)."""
+        """Return a plain dict for report.json (the historical keys plus the hand-offs)."""
         return {
             "name": self.name,
             "run": self.run,
@@ -259,12 +259,19 @@ class Stage:
         consumes: Iterable[str] = (),
         wants: Iterable[str] = (),
     ) -> Decision:
-        """A decision to run."""
-        return Decision(self.name, True, reason, sections=tuple(sections), options=dict(options or {}),
-                        consumes=tuple(consumes), wants=tuple(wants))
+        """Return a decision to run."""
+        return Decision(
+            self.name,
+            True,
+            reason,
+            sections=tuple(sections),
+            options=dict(options or {}),
+            consumes=tuple(consumes),
+            wants=tuple(wants),
+        )
 
     def skip(self, reason: str, **options: Any) -> Decision:
-        """A decision not to run."""
+        """Return a decision not to run."""
         return Decision(self.name, False, reason, options=dict(options))
 
     @property
@@ -273,7 +280,7 @@ class Stage:
         return tuple(h.name for h in self.produces)
 
     def handoff(self, name: str) -> Handoff:
-        """The declared hand-off ``name``."""
+        """Return the declared hand-off ``name``."""
         for h in self.produces:
             if h.name == name:
                 return h
@@ -330,7 +337,7 @@ class StageContext:
     progress: Callable[..., None] = lambda frac, what="": None
 
     def handoff(self, name: str) -> CachedStage | None:
-        """The upstream result that supplies hand-off ``name``, or None when none does."""
+        """Return the upstream result that supplies hand-off ``name``, or None when none does."""
         producer = self.plan.supplied.get(name)
         return self.upstream.get(producer) if producer else None
 
@@ -361,7 +368,9 @@ class Checkpoints:
     def __init__(self, folder: Path):
         self.folder = Path(folder)
 
-    def save(self, index: int, arrays: Mapping[str, np.ndarray], state: Mapping[str, Any] | None = None) -> None:
+    def save(
+        self, index: int, arrays: Mapping[str, np.ndarray], state: Mapping[str, Any] | None = None
+    ) -> None:
         """Write checkpoint ``index`` (the JSON state last: it marks the checkpoint complete)."""
         import os
 
@@ -369,7 +378,9 @@ class Checkpoints:
         tmp = self.folder / f".{index:06d}.tmp.npz"
         np.savez(tmp, **{k: np.asarray(v) for k, v in arrays.items()})
         os.replace(tmp, self.folder / f"{index:06d}.npz")
-        atomic_write_json(self.folder / f"{index:06d}.json", {"index": index, "state": dict(state or {})})
+        atomic_write_json(
+            self.folder / f"{index:06d}.json", {"index": index, "state": dict(state or {})}
+        )
 
     def latest(self) -> tuple[int, dict[str, np.ndarray], dict[str, Any]] | None:
         """``(index, arrays, state)`` of the newest complete checkpoint, or None."""
@@ -417,7 +428,7 @@ _IMPORTS_CACHE: dict[tuple[str, int, int], tuple[str, ...]] = {}
 
 
 def _imports(path: Path, module: str) -> tuple[str, ...]:
-    """tribolmp modules imported anywhere in ``path`` (functions included; TYPE_CHECKING blocks not)."""
+    """List the tribolmp modules ``path`` imports (in functions too; not under TYPE_CHECKING)."""
     st = path.stat()
     key = (str(path), st.st_mtime_ns, st.st_size)
     if key in _IMPORTS_CACHE:
@@ -444,7 +455,9 @@ def _imports(path: Path, module: str) -> tuple[str, ...]:
             visit(child)
 
     visit(ast.parse(path.read_text(), str(path)))
-    out = tuple(sorted({m for m in found if m.startswith("tribolmp") and _module_file(m) is not None}))
+    out = tuple(
+        sorted({m for m in found if m.startswith("tribolmp") and _module_file(m) is not None})
+    )
     _IMPORTS_CACHE[key] = out
     return out
 
@@ -516,6 +529,8 @@ def code_hash(stage: Stage) -> str:
 
 
 def with_supplied(decision: Decision, supplied: Mapping[str, str]) -> Decision:
-    """``decision`` with its supplied hand-offs and the upstream stages they come from."""
-    needs = tuple(dict.fromkeys(supplied[h] for h in (*decision.consumes, *decision.wants) if h in supplied))
+    """Return ``decision`` with its supplied hand-offs and the upstream stages they come from."""
+    needs = tuple(
+        dict.fromkeys(supplied[h] for h in (*decision.consumes, *decision.wants) if h in supplied)
+    )
     return replace(decision, supplied=dict(supplied), needs=needs)

@@ -124,7 +124,7 @@ def emit_json(obj: Any, stream=None) -> None:
 
 
 def seed_type(text: str) -> int:
-    """argparse type: a random seed, an integer >= 0 (numpy's SeedSequence refuses negatives)."""
+    """Parse a random seed, an integer >= 0 (argparse type; numpy's SeedSequence refuses negatives)."""
     try:
         value = int(text)
     except ValueError:
@@ -135,7 +135,7 @@ def seed_type(text: str) -> int:
 
 
 def float_list(text: str) -> list[float]:
-    """argparse type: comma-separated floats, e.g. ``1e5,1e6``."""
+    """Parse comma-separated floats (argparse type), e.g. ``1e5,1e6``."""
     try:
         values = [float(t) for t in text.split(",") if t.strip()]
     except ValueError:

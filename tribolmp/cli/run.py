@@ -101,7 +101,7 @@ def summary_text(chain) -> str:
 
 
 def stage_warnings(chain) -> list[str]:
-    """The warnings a stage recorded (e.g. the nanoscale 'not steady'), prefixed by the stage name."""
+    """Return the warnings a stage recorded (e.g. the nanoscale 'not steady'), prefixed by the stage name."""
     out = []
     for e in chain.entries.values():
         if e.cached is None:

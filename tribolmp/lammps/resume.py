@@ -15,8 +15,10 @@ from ..errors import LammpsError
 __all__ = ["run_mca_resuming"]
 
 
-def run_mca_resuming(params: Any, out: Path, *, seed: int, ranks: int = 1) -> tuple[Any, dict[str, Any]]:
-    """Run :func:`tribolmp.lammps.mca.run_mca` into ``out``, resuming from restart files found there.
+def run_mca_resuming(
+    params: Any, out: Path, *, seed: int, ranks: int = 1
+) -> tuple[Any, dict[str, Any]]:
+    """Run :func:`tribolmp.lammps.mca.run_mca` into ``out``, resuming from its restart files.
 
     A kill while LAMMPS was writing a restart file leaves it truncated: when
     LAMMPS refuses the newest restart file, that file is dropped and the run

@@ -226,7 +226,7 @@ def example_scenes() -> list[str]:
 
 
 def default_scene() -> Scene:
-    """The embedded default scene: the seed's steel-steel couple, scaled to run here."""
+    """Return the embedded default scene: the seed's steel-steel couple, scaled to run here."""
     return load_scene(scene_path("default"))
 
 
@@ -240,7 +240,7 @@ BUILTIN_SCENES: dict[str, dict[str, Any]] = {
 
 
 def builtin_scene(name: str) -> Scene:
-    """A built-in scene of :data:`BUILTIN_SCENES` (source ``<built-in>``)."""
+    """Return a built-in scene of :data:`BUILTIN_SCENES` (source ``<built-in>``)."""
     try:
         data = BUILTIN_SCENES[name]
     except KeyError:

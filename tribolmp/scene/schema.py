@@ -214,7 +214,7 @@ class Topography(Section):
     dx_noise: float = param(6.25e-30, unit="m^4/s", lo=0.0, hi=1e3, doc="Conserved-noise intensity Dx (2D: m^4/s, 1D: m^3/s).")
     dz: float = param(3.5e-30, unit="m^4/s", lo=0.0, hi=1e3, doc="Deposition/detachment noise intensity Dz (2D: m^4/s, 1D: m^3/s).")
     mu: float = param(900.0, unit="1/s", lo=0.0, hi=1e9, doc="Wear rate constant mu.")
-    l: float = param(2.5e-9, unit="m", lo=0.0, lo_open=True, hi=1.0, doc="Step length l of the stochastic flux.")
+    l: float = param(2.5e-9, unit="m", lo=0.0, lo_open=True, hi=1.0, doc="Step length l of the stochastic flux.")  # noqa: E741 (scene key: the paper's l)
     correlation_length: float = param(0.0, unit="m", lo=0.0, hi=1.0, doc="Noise correlation length l_c (0 = delta).")
     dim: int = param(1, choices=(1, 2), doc="1D profile or 2D surface.")
     grid_points: int = param(1024, lo=4, hi=1 << 22, doc="Grid points per side.")
@@ -281,7 +281,7 @@ def _rates_section() -> type[Section]:
         specs.append((f.name, hints[f.name], dataclasses.field(default=default, metadata=f.metadata)))
 
     def to_record(self, source: str = "[rates]") -> RatesRecord:
-        """The shared :class:`~tribolmp.records.Rates` record of this section."""
+        """Return the shared :class:`~tribolmp.records.Rates` record of this section."""
         return RatesRecord(**{name: getattr(self, name) for name, _t, _f in specs}, source=source)
 
     return dataclasses.make_dataclass(

@@ -13,7 +13,7 @@ __all__ = ["upstream_rates", "nanoscale_rates", "mu_binding"]
 
 
 def upstream_rates(ctx: StageContext) -> tuple[Rates | None, str]:
-    """The rates record a stage uses and where it came from.
+    """Return the rates record a stage uses and where it came from.
 
     The nanoscale stage's ``rates.json`` when the planner supplied that hand-off,
     else the scene's ``[rates]`` (written to ``rates.json`` in the stage's folder
@@ -31,7 +31,7 @@ def upstream_rates(ctx: StageContext) -> tuple[Rates | None, str]:
 
 
 def nanoscale_rates(ctx: StageContext) -> Rates | None:
-    """The nanoscale stage's rates record when the planner supplied it, else None (scene rates aside)."""
+    """Return the nanoscale stage's rates record when the planner supplied it, else None (scene rates aside)."""
     return upstream_rates(ctx)[0] if ctx.handoff("rates") is not None else None
 
 

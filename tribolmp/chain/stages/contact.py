@@ -17,7 +17,7 @@ __all__ = ["STAGE", "speed_error_table", "choose_contact_method"]
 
 
 def speed_error_table() -> dict[str, Any] | None:
-    """The shipped measured speed-vs-error table of the contact solvers, or None if absent."""
+    """Return the shipped measured speed-vs-error table of the contact solvers, or None if absent."""
     try:
         return json.loads(data_path("contact_speed_error.json").read_text())
     except (OSError, ValueError):
@@ -143,7 +143,7 @@ class Contact(Stage):
         return notes
 
     def run(self, ctx: StageContext) -> StageOutput:
-        """Normal stiffness against load: rough surface (evolved, given or generated) or axisymmetric profile."""
+        """Compute the normal stiffness against load: rough surface (evolved, given or generated) or axisymmetric profile."""
         from ...models.contact.solve import (
             load_surface,
             rough_params_from_scene,

@@ -16,8 +16,12 @@ __all__ = ["LOAD_FRACTIONS", "axisymmetric_load_sweep"]
 LOAD_FRACTIONS = tuple(float(f) for f in np.geomspace(0.01, 1.0, 9))
 
 
-def axisymmetric_load_sweep(params: AxisymmetricParams, *, method: str = "mdr",
-                            fractions: tuple[float, ...] = LOAD_FRACTIONS) -> Result:
+def axisymmetric_load_sweep(
+    params: AxisymmetricParams,
+    *,
+    method: str = "mdr",
+    fractions: tuple[float, ...] = LOAD_FRACTIONS,
+) -> Result:
     """Solve the axisymmetric contact at ``fractions`` of ``params.normal_force``.
 
     Parameters
@@ -39,11 +43,15 @@ def axisymmetric_load_sweep(params: AxisymmetricParams, *, method: str = "mdr",
     from ...errors import ParameterError
 
     if params.normal_force is None:
-        raise ParameterError("[load].normal_force", "a value > 0 N for a stiffness-vs-load curve", None)
+        raise ParameterError(
+            "[load].normal_force", "a value > 0 N for a stiffness-vs-load curve", None
+        )
     res = Result(method=method)
     with timed(res):
         loads = params.normal_force * np.asarray(fractions, float)
-        rows = [solve(dataclasses.replace(params, normal_force=float(F)), method=method) for F in loads]
+        rows = [
+            solve(dataclasses.replace(params, normal_force=float(F)), method=method) for F in loads
+        ]
         res["force"] = np.array([r.force for r in rows])
         res["contact_radius"] = np.array([r.contact_radius for r in rows])
         res["indentation"] = np.array([r.indentation for r in rows])
@@ -51,6 +59,12 @@ def axisymmetric_load_sweep(params: AxisymmetricParams, *, method: str = "mdr",
             res["stiffness"] = np.array([r.stiffness for r in rows])
         res["pressure"] = res["force"] / (np.pi * res["contact_radius"] ** 2)
         res["springs"] = int(rows[-1].get("springs", 0)) or None
-        res["units"] = {"force": "N", "contact_radius": "m", "indentation": "m", "stiffness": "N/m", "pressure": "Pa"}
+        res["units"] = {
+            "force": "N",
+            "contact_radius": "m",
+            "indentation": "m",
+            "stiffness": "N/m",
+            "pressure": "Pa",
+        }
         res["message"] = f"{method}: {len(loads)} loads up to {params.normal_force:g} N"
     return res

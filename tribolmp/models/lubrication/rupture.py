@@ -30,5 +30,11 @@ def film_rupture_gap(scene) -> tuple[float, str]:
         One line naming the rule.
     """
     if scene.roughness is not None:
-        return LAMBDA_CONTACT * scene.roughness.rms_height, "3 x [roughness].rms_height (Lambda = 3)"
-    return scene.lubricant.film_thickness, "[lubricant].film_thickness (no [roughness]: film ruptures where it started)"
+        return (
+            LAMBDA_CONTACT * scene.roughness.rms_height,
+            "3 x [roughness].rms_height (Lambda = 3)",
+        )
+    return (
+        scene.lubricant.film_thickness,
+        "[lubricant].film_thickness (no [roughness]: film ruptures where it started)",
+    )

@@ -14,8 +14,9 @@ from ...errors import ParameterError
 __all__ = ["tangential_stiffness_from_table"]
 
 
-def tangential_stiffness_from_table(pressure, stiffness, force, *, normal_force: float, apparent_area: float,
-                                    shear_to_normal: float) -> tuple[float, str]:
+def tangential_stiffness_from_table(
+    pressure, stiffness, force, *, normal_force: float, apparent_area: float, shear_to_normal: float
+) -> tuple[float, str]:
     """Tangential stiffness (N/m) of an apparent contact from a patch's normal-stiffness table.
 
     The table gives the normal stiffness ``k_n(p)`` of a patch of area
@@ -51,10 +52,13 @@ def tangential_stiffness_from_table(pressure, stiffness, force, *, normal_force:
     if not (p.min() <= p_macro <= p.max()):
         raise ParameterError(
             "[load].normal_force",
-            f"a nominal pressure N/(apparent_length*apparent_width) within [load].pressures [{p.min():g}, {p.max():g}] Pa",
+            "a nominal pressure N/(apparent_length*apparent_width) within [load].pressures "
+            f"[{p.min():g}, {p.max():g}] Pa",
             f"{p_macro:g} Pa",
         )
     order = np.argsort(p)
-    k_per_area = np.exp(np.interp(np.log(p_macro), np.log(p[order]), np.log((k / area_patch)[order])))
+    k_per_area = np.exp(
+        np.interp(np.log(p_macro), np.log(p[order]), np.log((k / area_patch)[order]))
+    )
     k_t = float(k_per_area * apparent_area * shear_to_normal)
     return k_t, f"contact stage at p = {p_macro:g} Pa over {apparent_area:g} m^2, times G*/E*"
