@@ -4,8 +4,7 @@ Layers, bottom to top (STYLE: foundations <- scene <- models <- analysis/lammps
 <- chain <- cli)::
 
     0 foundations   tribolmp/__init__, errors, units, rng, params, jsonio, results, records,
-                    locking,
-                    environment, benchmarking
+                    environment, benchmarking, locking, progress, resources
     1 scene         tribolmp.scene
     2 models        tribolmp.models
     3 analysis, lammps  (lammps may call the analysis; the analysis imports neither lammps
