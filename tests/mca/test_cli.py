@@ -33,6 +33,9 @@ def test_smoke_preset_json(cli, lammps_available, tmp_path):
     if data["rates_json"] is not None:  # written by tribolmp.analysis.rates when present
         rates = json.loads(Path(data["rates_json"]).read_text())
         assert rates["mu"] == data["mu"] and rates["time_s"] == pytest.approx(data["time_s"])
+        # issue 12: what rates.json flags is said on stderr too (it printed only mu before)
+        assert ("mu is NOT steady" in res.stderr) == (rates.get("mu_steady") is False)
+        assert ("no sheared (quasi-liquid) layer was measured" in res.stderr) == (not rates.get("layer_depth_m"))
 
 
 @pytest.mark.lammps

@@ -7,6 +7,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 from . import seed_type
@@ -82,8 +83,12 @@ def run(args: argparse.Namespace) -> int:
     changes = {k: v for k, v in changes.items() if v is not None}
     if changes:
         params = params.replace(**changes)
+    from ..locking import DirLock, prepare_dir
+
     seed = args.seed if args.seed is not None else scene.scene.seed
-    res = run_mca(params, Path(args.out), seed=seed, resume=args.resume, np=args.np)
+    out = prepare_dir(args.out, "--out")
+    with DirLock(out, what="output folder"):
+        res = run_mca(params, out, seed=seed, resume=args.resume, np=args.np)
     payload = {"rates_json": res.get("rates_path"), "out_dir": res["out_dir"]}
     payload.update({k: res.get(k) for k in JSON_FIELDS})
     payload.update(
@@ -105,7 +110,26 @@ def run(args: argparse.Namespace) -> int:
         print(f"rates: {payload['rates_json']}")
         for k in JSON_FIELDS:
             print(f"{k}: {payload[k]}")
+    for line in _rates_warnings(payload.get("rates_json")):
+        print(f"warning: {line}", file=sys.stderr)
     return 0
+
+
+def _rates_warnings(rates_path) -> list[str]:
+    """List what a user must not miss in rates.json: unsteady mu, no sheared layer, warnings."""
+    import json
+
+    try:
+        rates = json.loads(Path(rates_path).read_text())
+    except (OSError, TypeError, ValueError):
+        return []
+    lines = []
+    if rates.get("mu_steady") is False:
+        lines.append("mu is NOT steady: it is the mean of the run's second half; "
+                     "run longer for a steady value")
+    if not rates.get("layer_depth_m"):
+        lines.append("no sheared (quasi-liquid) layer was measured in this run")
+    return lines + [str(w) for w in rates.get("warnings", [])]
 
 
 def _scene_overrides(params) -> dict:
