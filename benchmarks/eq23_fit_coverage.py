@@ -1,10 +1,12 @@
-"""Eq. 23 fit (tribolmp.analysis.eq23): accuracy, error coverage and cost against the run length.
+"""Eq. 23 fit (tribolmp.analysis.eq23): accuracy, error coverage and cost against run length.
 
-Synthetic profiles h(x, t) from the exact OU integrator of Eq. 23 (tribolmp.models.topography), sampled like
-an MCA run (40 columns of 2.5 nm, a frame every 0.05 ns, 1 nm white measurement noise), with known
-mu = 2e9 1/s, D0 = 1e-7 m^2/s, Dz = 1e-16 m^3/s, Dx l^2 = 1e-33 m^5/s.  For each run length: wall time of one
-fit, bias and scatter of each coefficient, fraction valid, and the coverage of the reported +-1 and +-2
-errors (nominal for 20 jackknife blocks, Student t with 19 dof: 0.670 and 0.940).
+Synthetic profiles h(x, t) from the exact OU integrator of Eq. 23
+(tribolmp.models.topography), sampled like an MCA run (40 columns of 2.5 nm, a
+frame every 0.05 ns, 1 nm white measurement noise), with known mu = 2e9 1/s,
+D0 = 1e-7 m^2/s, Dz = 1e-16 m^3/s, Dx l^2 = 1e-33 m^5/s.  For each run length:
+wall time of one fit, bias and scatter of each coefficient, fraction valid, and
+the coverage of the reported +-1 and +-2 errors (nominal for 20 jackknife
+blocks, Student t with 19 dof: 0.670 and 0.940).
 
     python benchmarks/eq23_fit_coverage.py [--quick] [--plot docs/analysis_eq23_coverage.png]
 
@@ -28,8 +30,19 @@ NX, DX, DT, NOISE, L_STEP = 40, 2.5e-9, 5e-11, 1e-9, 2.5e-9
 
 
 def synth(rng, replicas, nt):
-    p = TopographyParams(dim=1, n=NX, dx=DX, d0=TRUE["d0_m2_s"], dx_noise=TRUE["dx_l2"] / L_STEP**2,
-                         dz=TRUE["dz"], mu=TRUE["mu_per_s"], l=L_STEP, dt=DT, steps=1)
+    """Return x (m), t (s) and h (m, replicas x nt x NX) of independent stationary runs."""
+    p = TopographyParams(
+        dim=1,
+        n=NX,
+        dx=DX,
+        d0=TRUE["d0_m2_s"],
+        dx_noise=TRUE["dx_l2"] / L_STEP**2,
+        dz=TRUE["dz"],
+        mu=TRUE["mu_per_s"],
+        l=L_STEP,
+        dt=DT,
+        steps=1,
+    )
     st = make_stepper(p, rng=rng, replicas=replicas, h0="stationary")
     h = np.empty((replicas, nt, NX))
     for i in range(nt):
@@ -39,6 +52,7 @@ def synth(rng, replicas, nt):
 
 
 def main(argv=None) -> int:
+    """Run the table (and the figure with --plot)."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--plot", default=None)
@@ -67,7 +81,11 @@ def main(argv=None) -> int:
                 row[f"{c}_cov2"] = float(np.mean(np.abs(z) < 2))
         rows.append(row)
     print_table("Eq. 23 fit on exact-OU profiles (nominal coverage 0.670 / 0.940)", rows)
-    out = Path(__file__).parent / "results" / ("eq23_fit_coverage_quick.csv" if args.quick else "eq23_fit_coverage.csv")
+    out = (
+        Path(__file__).parent
+        / "results"
+        / ("eq23_fit_coverage_quick.csv" if args.quick else "eq23_fit_coverage.csv")
+    )
     write_csv(out, rows)
     print(f"wrote {out}")
     if args.plot:
@@ -81,7 +99,14 @@ def main(argv=None) -> int:
         fig, axes = plt.subplots(1, 5, figsize=(16, 3.2))
         zz = np.linspace(-4, 4, 200)
         for ax, c in zip(axes[:4], COEFFICIENTS):
-            ax.hist(np.clip(zs[(nt, c)], -4, 4), bins=24, range=(-4, 4), density=True, alpha=0.6, label="fits")
+            ax.hist(
+                np.clip(zs[(nt, c)], -4, 4),
+                bins=24,
+                range=(-4, 4),
+                density=True,
+                alpha=0.6,
+                label="fits",
+            )
             ax.plot(zz, student.pdf(zz, 19), "k-", lw=1, label="t(19)")
             ax.set_title(f"{c}: (fit - true)/err")
             ax.set_xlabel(f"{nt} frames = {nt * DT * 1e9:.0f} ns")
