@@ -7,7 +7,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ...errors import SceneError
-from ...jsonio import scalars
+from ...jsonio import atomic_write_json, scalars
 from ...records import Rates
 from ..stage import Decision, Demand, Figure, Handoff, Stage, StageContext, StageOutput
 
@@ -105,6 +105,12 @@ class Nanoscale(Stage):
             options={"rates_source": "nanoscale", "preset": scene.nanoscale.preset, "ranks": scene.nanoscale.ranks},
         )
 
+    def preflight(self, scene, decision: Decision) -> list[str]:
+        """Estimate the LAMMPS wall time before it starts, from throughput measured on this machine."""
+        est = estimate_wall_time(scene)
+        return [f"estimated wall time ~{est['seconds']:.3g} s ({est['atoms']:.3g} automata x {est['steps']:.3g} "
+                f"steps at {est['rate']:.3g} automaton-steps/s, {est['rate_source']})"]
+
     def run(self, ctx: StageContext) -> StageOutput:
         """LAMMPS MCA friction run -> ``rates.json`` (plus friction.csv, trajectory, meta.json)."""
         from ...lammps import mca
@@ -117,6 +123,7 @@ class Nanoscale(Stage):
         with _watch_progress(out / "friction.csv", params.duration, ctx.progress):
             # An interrupted run left restart files in the (kept) partial folder: continue from them.
             res, resume_info = run_mca_resuming(params, out, seed=seed, ranks=ctx.scene.nanoscale.ranks)
+        _remember_throughput(ctx.scene, out / "meta.json")
         rates_path = out / "rates.json"
         if not rates_path.exists():
             raise RuntimeError(f"run_mca finished without writing {rates_path.name}")
@@ -139,6 +146,79 @@ class Nanoscale(Stage):
             provenance={"lammps_seed_from": ctx.seed, **resume_info, "params": scalars(dict(vars(params))),
                         "rates_provenance": rates.get("provenance", {}), "warnings": rates.get("warnings", [])},
         )
+
+
+#: Automaton-steps per second per rank when nothing was measured on this machine yet:
+#: benchmarks/results/mca_throughput.csv (bpm/spring/plastic, 2D, 1 rank, 2k-40k automata: 5.7-7.1e6).
+SHIPPED_THROUGHPUT = 6e6
+
+
+def _throughput_file() -> Path:
+    import os
+
+    base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
+    return base / "tribolmp" / "mca_throughput.json"
+
+
+def _throughput_key(params, ranks: int) -> str:
+    return f"{params.bond_style}/{params.dim}d/{ranks}"
+
+
+def estimate_wall_time(scene) -> dict:
+    """Automata, steps and wall time (s) of the scene's nanoscale run, before it starts.
+
+    The automaton count is the two bodies' area (2D) or volume (3D) over one
+    automaton's cell in the close-packed lattice; the steps are the duration
+    over the law's timestep; the throughput is the last one measured on this
+    machine for the same law, dimension and ranks (written after every run),
+    else :data:`SHIPPED_THROUGHPUT` times the ranks.
+    """
+    import math
+
+    from ...lammps import mca
+    from ...lammps.laws import get_law
+    from ...units import from_lammps
+
+    params = mca.params_from_scene(scene)
+    ranks = int(scene.nanoscale.ranks or 1)
+    c = get_law(params.bond_style).map_material(params.material())
+    dt_s = from_lammps(params.dt_factor * c.dt_unit, "time")
+    d = params.automaton_diameter
+    if params.dim == 2:
+        atoms = params.box_length * 2 * params.body_height / (math.sqrt(3) / 2 * d * d)
+    else:
+        atoms = params.box_length * params.box_width * 2 * params.body_height / (d**3 / math.sqrt(2))
+    steps = params.duration / dt_s
+    try:
+        rate = float(json.loads(_throughput_file().read_text())[_throughput_key(params, ranks)])
+        source = "measured on this machine by the last run"
+    except (OSError, ValueError, KeyError, TypeError):
+        rate, source = SHIPPED_THROUGHPUT * ranks, "shipped benchmark figure (nothing measured here yet)"
+    return {"atoms": atoms, "steps": steps, "rate": rate, "rate_source": source, "seconds": atoms * steps / rate,
+            "key": _throughput_key(params, ranks)}
+
+
+def _remember_throughput(scene, meta_path: Path) -> None:
+    """Keep this machine's measured throughput for the next estimate (best effort: never fails a run).
+
+    Stored per *estimated* automaton, so that the estimate's count (which misses the
+    rigid layers and the roughness) and the measured rate cancel: the next estimate of
+    the same scene is the wall time just measured.
+    """
+    try:
+        meta = json.loads(meta_path.read_text())
+        est = estimate_wall_time(scene)
+        rate = float(meta["atom_steps_per_s"]) * est["atoms"] / float(meta["n_atoms"])
+        f = _throughput_file()
+        try:
+            table = json.loads(f.read_text())
+        except (OSError, ValueError):
+            table = {}
+        params_key = est["key"]
+        table[params_key] = rate
+        atomic_write_json(f, table)
+    except (OSError, ValueError, KeyError, TypeError, ZeroDivisionError):
+        pass
 
 
 STAGE = Nanoscale()
