@@ -12,7 +12,6 @@ import os
 import signal
 import subprocess
 import sys
-import threading
 import time
 from pathlib import Path
 
@@ -20,7 +19,6 @@ import numpy as np
 import pytest
 
 from tribolmp.campaign import Vary, expand_points, parse_vary, point_id
-from tribolmp.chain.cache import StageCache
 from tribolmp.cli import main
 from tribolmp.errors import ParameterError
 
@@ -93,21 +91,6 @@ def test_vary_parsing_and_the_point_product():
             parse_vary(bad)
     with pytest.raises(ParameterError, match="--seeds"):
         expand_points({}, [v], seeds=0)
-
-
-def test_stage_cache_claim_makes_a_concurrent_run_wait_and_reuse(tmp_path):
-    """Two runs sharing a cache: the second waits for the first's commit instead of computing the same key."""
-    a, b = StageCache(tmp_path), StageCache(tmp_path)
-    assert a.lookup("topography", "k1") is None  # a computes: it holds the claim
-    got = {}
-    t = threading.Thread(target=lambda: got.setdefault("hit", b.lookup("topography", "k1")))
-    t.start()
-    time.sleep(0.3)
-    assert t.is_alive()  # b waits (old code: b missed too and both computed into one .partial folder)
-    a.workdir("topography", "k1")
-    a.commit("topography", "k1", {"values": {"x": 1.0}})
-    t.join(10)
-    assert not t.is_alive() and got["hit"] is not None and got["hit"].values == {"x": 1.0}
 
 
 def test_sweep_on_two_workers_json_contract_failing_point_and_figures(tmp_path, capsys):

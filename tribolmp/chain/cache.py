@@ -52,10 +52,6 @@ class CachedStage:
             raise KeyError(f"stage {self.stage!r} has no file {name!r}; it has {sorted(self.record.get('files', {}))}") from None
 
 
-#: Claims held by this process: (root, stage, key) -> (thread id, lock file).
-_HELD: dict[tuple[str, str, str], tuple[int, Any]] = {}
-
-
 class StageCache:
     """Stage results on disk under ``root`` (normally ``<out>/cache``).
 
@@ -67,52 +63,6 @@ class StageCache:
 
     def __init__(self, root: str | Path):
         self.root = Path(root)
-        # Claims held by this process: (stage, key) -> open lock file (see lookup()).
-        self._claims: dict[tuple[str, str], Any] = {}
-
-    def _claim(self, stage: str, key: str) -> None:
-        """Exclusive claim on computing ``stage``/``key`` (blocks while another process holds it).
-
-        Several runs may share one cache (``tribolmp sweep``: Dask workers; two
-        sweeps): without the claim, two of them computing the same key at once
-        write into the same ``.partial`` folder and the second commit deletes
-        the first (issue 16).  ``flock`` locks are released by the OS when the
-        process ends, so a killed run never leaves a stale claim.
-        """
-        if (stage, key) in self._claims:
-            return
-        import fcntl
-        import threading
-
-        self.root.mkdir(parents=True, exist_ok=True)
-        ident = (str(self.root.resolve()), stage, key)
-        held = _HELD.get(ident)
-        if held is not None and held[0] == threading.get_ident():
-            # Left by an earlier run in this thread whose stage failed or was interrupted (its
-            # StageCache still referenced by a traceback): runs in one thread are sequential, take it over.
-            self._claims[(stage, key)] = held[1]
-            return
-        fh = open(self.root / f"{stage}-{key}.lock", "a+")  # noqa: SIM115 - held until release
-        fcntl.flock(fh.fileno(), fcntl.LOCK_EX)
-        _HELD[ident] = (threading.get_ident(), fh)
-        self._claims[(stage, key)] = fh
-
-    def release(self, stage: str | None = None, key: str | None = None) -> None:
-        """Drop the claim on ``stage``/``key`` (all claims without arguments)."""
-        items = list(self._claims) if stage is None else [(stage, key)]
-        for item in items:
-            fh = self._claims.pop(item, None)
-            if fh is not None:
-                ident = (str(self.root.resolve()), *item)
-                if ident in _HELD and _HELD[ident][1] is fh:
-                    del _HELD[ident]
-                fh.close()  # closing the descriptor releases the flock
-
-    def __del__(self):  # a failed or interrupted stage: its claim ends with the run
-        try:
-            self.release()
-        except Exception:  # noqa: BLE001 - interpreter shutdown
-            pass
 
     def key(self, stage: str, inputs: Mapping[str, Any]) -> str:
         """Cache key of ``stage`` for ``inputs`` (includes the tribolmp version)."""
@@ -129,22 +79,7 @@ class StageCache:
         return self.root / f"{stage}-{key}.partial"
 
     def lookup(self, stage: str, key: str) -> CachedStage | None:
-        """Return the committed result of ``stage`` with ``key``, or None.
-
-        On a miss the caller is expected to compute the stage: the miss takes
-        the claim on the key (waiting for a concurrent run that holds it, whose
-        result is then returned instead), and :meth:`commit` drops it.
-        """
-        hit = self._lookup(stage, key)
-        if hit is not None:
-            return hit
-        self._claim(stage, key)
-        hit = self._lookup(stage, key)
-        if hit is not None:  # computed by the run we waited for
-            self.release(stage, key)
-        return hit
-
-    def _lookup(self, stage: str, key: str) -> CachedStage | None:
+        """Return the committed result of ``stage`` with ``key``, or None."""
         path = self.final_dir(stage, key)
         try:
             record = json.loads((path / "result.json").read_text())
@@ -204,5 +139,4 @@ class StageCache:
         if final.exists():  # a concurrent or forced rerun: replace the old result
             self.discard(stage, key)
         os.replace(work, final)
-        self.release(stage, key)
         return CachedStage(stage, key, final, json.loads((final / "result.json").read_text()))
