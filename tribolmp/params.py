@@ -35,6 +35,7 @@ __all__ = [
     "check_positive",
     "check_choice",
     "check_int",
+    "renamed",
 ]
 
 
@@ -326,6 +327,8 @@ def build_dataclass(cls: type, data: dict, prefix: str = "", source: str | None 
     if not isinstance(data, dict):
         raise ParameterError(prefix.rstrip("."), "a table", data, source)
     names = {f.name: f for f in dataclasses.fields(cls) if f.init}
+    aliases = getattr(cls, "__field_aliases__", {})
+    data = {aliases.get(k, k) if k not in names else k: v for k, v in data.items()}
     for key in data:
         if key not in names:
             raise ParameterError(
@@ -361,3 +364,50 @@ def field_docs(cls: type) -> list[tuple[str, str, str, str]]:
             rng = ""
         rows.append((f.name, m.get("unit", ""), rng, m.get("doc", "")))
     return rows
+
+
+def renamed(**old_to_new: str):
+    """Class decorator keeping old field names of a renamed dataclass field working.
+
+    ``@renamed(modulus="E_star")`` on a dataclass whose field is now ``E_star``:
+    the constructor (and :func:`dataclasses.replace`) accepts ``modulus=`` as
+    well (the old name wins when both are given, which is what ``replace``
+    passes), reading ``obj.modulus`` returns ``obj.E_star``, and
+    :func:`build_dataclass` (scene files) accepts the old key.  The aliases are
+    listed in ``cls.__field_aliases__`` and documented in docs/conventions.md.
+
+    Parameters
+    ----------
+    **old_to_new : str
+        Old name -> current field name.
+
+    Returns
+    -------
+    callable
+        The decorator.
+    """
+
+    def deco(cls: type) -> type:
+        names = {f.name for f in dataclasses.fields(cls)}
+        bad = {o: n for o, n in old_to_new.items() if n not in names or o in names}
+        if bad:
+            raise TypeError(f"{cls.__name__}: bad field aliases {bad}")
+        init = cls.__init__
+
+        def __init__(self, *args: Any, **kwargs: Any) -> None:
+            for old, new in old_to_new.items():
+                if old in kwargs:
+                    kwargs[new] = kwargs.pop(old)
+            init(self, *args, **kwargs)
+
+        __init__.__doc__ = init.__doc__
+        __init__.__wrapped__ = init
+        cls.__init__ = __init__
+        for old, new in old_to_new.items():
+            alias = property(lambda self, _n=new: getattr(self, _n), doc=f"Deprecated alias of ``{new}``.")
+            setattr(cls, old, alias)
+        cls.__field_aliases__ = {**getattr(cls, "__field_aliases__", {}), **old_to_new}
+        return cls
+
+    return deco
+

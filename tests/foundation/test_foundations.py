@@ -154,3 +154,27 @@ def test_small_helpers():
     assert check_int("n", np.int64(3), 1) == 3
     with pytest.raises(ParameterError):
         check_int("n", True)
+
+
+def test_renamed_fields_keep_the_old_name_working():
+    from dataclasses import dataclass, replace
+
+    from tribolmp.params import build_dataclass, param, renamed, validate_dataclass
+
+    @renamed(modulus="E_star")
+    @dataclass(frozen=True)
+    class P:
+        E_star: float = param(1e11, unit="Pa", lo=0.0, lo_open=True)
+        n: int = param(3)
+
+        def __post_init__(self):
+            validate_dataclass(self)
+
+    assert P(modulus=2e11).E_star == 2e11 and P(E_star=3e11).modulus == 3e11
+    assert replace(P(E_star=1.0), modulus=5.0).E_star == 5.0
+    assert replace(P(E_star=1.0), n=4).E_star == 1.0
+    assert build_dataclass(P, {"modulus": 4.0}).E_star == 4.0
+    with pytest.raises(ParameterError, match="modulus|E_star"):
+        P(modulus=-1.0)
+    with pytest.raises(TypeError):
+        renamed(x="nonexistent")(P)
