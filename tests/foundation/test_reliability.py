@@ -41,7 +41,8 @@ def assert_one_line(proc, code):
 
 # --- bad output folders: before issue 12 these were FileExistsError/NotADirectoryError tracebacks,
 # or (--out "") a run written into the working folder.
-@pytest.mark.parametrize("kind", ["file", "under_file", "devnull", "empty", "cache_file"])
+@pytest.mark.parametrize("kind", ["file", "under_file", "devnull", "empty", "cache_file", "cache_under_file",
+                                  "cache_devnull", "cache_empty"])
 def test_bad_output_folder_is_one_line_exit_2(tmp_path, kind):
     afile = tmp_path / "afile"
     afile.write_text("x")
@@ -51,10 +52,13 @@ def test_bad_output_folder_is_one_line_exit_2(tmp_path, kind):
         "devnull": ["--out", os.devnull],
         "empty": ["--out", ""],
         "cache_file": ["--out", tmp_path / "o", "--cache-dir", afile],
+        "cache_under_file": ["--out", tmp_path / "o", "--cache-dir", afile / "c"],
+        "cache_devnull": ["--out", tmp_path / "o", "--cache-dir", os.devnull],
+        "cache_empty": ["--out", tmp_path / "o", "--cache-dir", ""],
     }[kind]
     proc = cli("run", RATES_GIVEN, *args, "--quiet", cwd=tmp_path)
     assert_one_line(proc, 2)
-    assert ("--cache-dir" if kind == "cache_file" else "--out") in proc.stderr
+    assert ("--cache-dir" if kind.startswith("cache") else "--out") in proc.stderr
     # nothing was written into the working folder (the "" case used to write report.md here)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["afile"]
 
