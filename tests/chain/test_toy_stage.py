@@ -128,3 +128,15 @@ def test_cli_force_choices_are_the_registry():
     run_cli.configure(parser)
     force = next(a for a in parser._actions if a.dest == "force")
     assert tuple(force.choices) == (*REGISTRY.names, "all")
+
+
+def test_scene_output_choices_are_the_stages_outputs():
+    # The scene sits below the chain and cannot import the registry: [outputs].requested's choices
+    # are kept equal to what the registered stages serve by this test (a new output of a new stage
+    # is one entry in scene/schema.py OUTPUT_CHOICES).
+    from tribolmp.chain.registry import REGISTRY
+    from tribolmp.scene.schema import OUTPUT_CHOICES
+
+    served = [o for s in REGISTRY for o in s.outputs]
+    assert len(served) == len(set(served)), "two stages serve the same output"
+    assert set(served) == set(OUTPUT_CHOICES)
