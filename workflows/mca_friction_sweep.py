@@ -1,19 +1,23 @@
-"""MCA friction study: sweep sliding velocity x normal pressure on LAMMPS.
+"""MCA friction study: sweep sliding velocity x normal pressure (x seeds) on LAMMPS.
 
 Usage::
 
     python workflows/mca_friction_sweep.py [--quick] [--preset default] [--velocities 1,5,20]
-        [--pressures 50e6,150e6,382e6] [--duration S] [--box-length M] [--body-height M]
-        [--dim 2] [--np 1] [--seed 1] [--out mca_sweep] [--resume]
+        [--pressures 0.5e6,50e6,150e6,382e6] [--seeds 1] [--law mca] [--duration S]
+        [--box-length M] [--body-height M] [--dim 2] [--np 1] [--out mca_sweep] [--resume]
+        [--campaign docs/data/mca_campaign.csv] [--table tribolmp/data/nanoscale_table.json]
 
-For every (V, P) it runs :func:`tribolmp.lammps.mca.run_mca` (which writes
-``rates.json`` through :func:`tribolmp.analysis.rates.compute_rates`), draws
-mu(t), the height profiles and a Fig. 9-like snapshot coloured by body, and
-collects a table of mu, layer depth, D and wear rate into ``summary.csv`` and
-``summary.md`` in ``--out``.  ``--quick`` uses the ``smoke`` preset (about
-10 s of LAMMPS per run on one core).  A run that fails is recorded in the
-table with its error and the sweep goes on.  No physics here: only library
-calls and bookkeeping.
+For every (V, P, seed) it runs :func:`tribolmp.lammps.mca.run_mca` (which writes
+``rates.json`` and ``profile.npz`` through
+:func:`tribolmp.analysis.rates.compute_rates`), draws mu(t), the height
+profiles and a Fig. 9-like snapshot coloured by body, and collects a table
+into ``summary.csv`` and ``summary.md`` in ``--out``.  With ``--campaign`` each
+finished run is also appended (one row per run, replacing an older row of the
+same run) to that CSV, the study's committed table; ``--table`` then writes the
+nanoscale table the chain interpolates (mu and the Eq. 23 coefficients against
+P and V, seeds combined, with provenance).  ``--quick`` uses the ``smoke``
+preset.  A run that fails is recorded with its error and the sweep goes on.
+No physics here: only library calls and bookkeeping.
 """
 
 from __future__ import annotations
@@ -29,23 +33,155 @@ from pathlib import Path
 COLUMNS = (
     ("V (m/s)", "velocity_m_s", 1.0, "{:g}"),
     ("P (MPa)", "pressure_Pa", 1e-6, "{:g}"),
+    ("seed", "seed", None, "{}"),
     ("mu", "mu", 1.0, "{:.3f}"),
     ("mu_err", "mu_err", 1.0, "{:.3f}"),
     ("steady", "mu_steady", None, "{}"),
     ("layer (nm)", "layer_depth_m", 1e9, "{:.2f}"),
-    ("layer resolved", "layer_resolved", None, "{}"),
-    ("layer offset (nm)", "layer_offset_m", 1e9, "{:.2f}"),
+    ("layer err (nm)", "layer_depth_err_m", 1e9, "{:.2f}"),
+    ("localized", "localized", None, "{}"),
     ("mixed (nm)", "mixed_width_m", 1e9, "{:.2f}"),
     ("D (m^2/s)", "diffusion_m2_s", 1.0, "{:.3g}"),
-    ("wear (1/s)", "wear_rate", 1.0, "{:.3g}"),
-    ("transfer (1/m)", "transfer_rate", 1.0, "{:.3g}"),
-    ("links broken (1/s)", "links_broken_per_s", 1.0, "{:.3g}"),
+    ("MSD exponent", "diffusion_exponent", 1.0, "{:.2f}"),
+    ("transfer (1/ns)", "transfer_per_s", 1e-9, "{:.3g}"),
+    ("cross links formed", "cross_body_links_formed", None, "{}"),
+    ("mu_per_s", "mu_per_s", 1.0, "{:.3g}"),
+    ("d0 (m^2/s)", "d0_m2_s", 1.0, "{:.3g}"),
     ("t (ns)", "time_s", 1e9, "{:.3g}"),
     ("atoms", "natoms", None, "{}"),
-    ("Matom-steps/s", "atom_steps_per_s", 1e-6, "{:.3g}"),
     ("wall (s)", "wall_time_s", 1.0, "{:.0f}"),
     ("status", "status_text", None, "{}"),
 )
+
+#: Columns of the committed campaign table (docs/data/mca_campaign.csv), SI.
+CAMPAIGN_COLUMNS = (
+    "run", "pressure_Pa", "sliding_velocity_m_s", "seed", "dim", "law", "box_length_m", "body_height_m",
+    "natoms", "time_s", "mu", "mu_err", "mu_steady", "layer_depth_m", "layer_depth_err_m", "localized",
+    "localized_within_m", "mixed_width_m", "mixed_width_err_m", "cross_body_links_formed",
+    "cross_body_links_per_ns", "cross_body_links_per_ns_err", "transfer_per_ns", "transfer_per_ns_err",
+    "diffusion_m2_s", "diffusion_exponent", "mu_per_s", "mu_per_s_err", "d0_m2_s", "d0_m2_s_err", "dz", "dz_err",
+    "dx_l2", "dx_l2_err", "valid_mu_per_s", "valid_d0_m2_s", "valid_dz", "valid_dx_l2", "modes_used",
+    "wall_time_s", "status",
+)
+
+
+def localized(rates: dict, within_m: float) -> bool | None:
+    """Slip and mixing stay near the initial interface through the second half of the analysed window.
+
+    True when, in every persistence window of the second half, the layer centre is within
+    ``within_m`` of the initial interface and the x-averaged mixed width is below ``2 within_m``.
+    """
+    lp = rates.get("layer_persistence") or {}
+    off = [v for v in (lp.get("layer_offset_m") or [])]
+    mix = [v for v in (lp.get("mixed_width_xavg_m") or [])]
+    if not off:
+        return None
+    half = off[len(off) // 2:]
+    mhalf = mix[len(mix) // 2:] if mix else []
+    if any(v is None for v in half):
+        return False
+    return all(abs(v) <= within_m for v in half) and all(m is not None and m <= 2 * within_m for m in mhalf)
+
+
+def campaign_row(row: dict, rates: dict, meta: dict, params) -> dict:
+    """One committed row of the campaign table from a run's rates.json and meta.json (SI, counts per ns)."""
+    d = float(meta.get("automaton_diameter_m") or 2.5e-9)
+    within = 3 * d
+    out = {
+        "run": row["run"], "pressure_Pa": row["pressure_Pa"], "sliding_velocity_m_s": row["velocity_m_s"],
+        "seed": row["seed"], "dim": (rates.get("conditions") or {}).get("dim"),
+        "law": (rates.get("conditions") or {}).get("law"),
+        "box_length_m": getattr(params, "box_length", None), "body_height_m": getattr(params, "body_height", None),
+        "natoms": meta.get("n_atoms"), "time_s": rates.get("time_s"), "mu": rates.get("mu"),
+        "mu_err": rates.get("mu_err"), "mu_steady": rates.get("mu_steady"),
+        "layer_depth_m": rates.get("layer_depth_m"), "layer_depth_err_m": rates.get("layer_depth_err_m"),
+        "localized": localized(rates, within), "localized_within_m": within,
+        "mixed_width_m": rates.get("mixed_width_m"), "mixed_width_err_m": rates.get("mixed_width_err_m"),
+        "cross_body_links_formed": rates.get("cross_body_links_formed"),
+        "diffusion_m2_s": rates.get("diffusion_m2_s"), "diffusion_exponent": rates.get("diffusion_exponent"),
+        "modes_used": len(rates.get("modes_used") or []),
+        "wall_time_s": meta.get("wall_time_s"), "status": row.get("status_text"),
+    }
+    for src, dst in (("cross_body_links_formed_per_s", "cross_body_links_per_ns"), ("transfer_per_s", "transfer_per_ns")):
+        for suffix in ("", "_err"):
+            v = rates.get(src + suffix)
+            out[dst + suffix] = None if v is None else v * 1e-9
+    for c in ("mu_per_s", "d0_m2_s", "dz", "dx_l2"):
+        out[c], out[f"{c}_err"] = rates.get(c), rates.get(f"{c}_err")
+        out[f"valid_{c}"] = (rates.get("valid") or {}).get(c)
+    return out
+
+
+def append_campaign(path: Path, new: dict) -> None:
+    """Add (or replace, by run name) one row of the campaign CSV, atomically."""
+    rows = []
+    if path.exists():
+        with path.open() as fh:
+            rows = [r for r in csv.DictReader(fh) if r.get("run") != new["run"]]
+    rows.append({k: ("" if new.get(k) is None else new.get(k)) for k in CAMPAIGN_COLUMNS})
+    tmp = path.with_suffix(".csv.tmp")
+    with tmp.open("w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(CAMPAIGN_COLUMNS))
+        w.writeheader()
+        w.writerows(rows)
+    tmp.replace(path)
+
+
+def nanoscale_table(campaign: Path, out: Path, *, description: str) -> dict:
+    """Write the table the chain interpolates: mu and Eq. 23 coefficients per (P, V), seeds combined.
+
+    Per (P, V): mu is the mean over seeds; its error the larger of the combined standard errors
+    sqrt(sum err^2)/n and the seed scatter std/sqrt(n) (when n > 1).  An Eq. 23 coefficient is given
+    only if valid in every seed (the same combination), else null with ``<c>_valid: false``.
+    """
+    import datetime as dt
+    import math
+
+    with campaign.open() as fh:
+        rows = list(csv.DictReader(fh))
+    groups: dict[tuple[float, float], list[dict]] = {}
+    for r in rows:
+        if r.get("mu") in ("", None):
+            continue
+        groups.setdefault((float(r["pressure_Pa"]), float(r["sliding_velocity_m_s"])), []).append(r)
+
+    def combine(vals, errs):
+        n = len(vals)
+        mean = sum(vals) / n
+        se = math.sqrt(sum(e * e for e in errs)) / n
+        if n > 1:
+            sd = math.sqrt(sum((v - mean) ** 2 for v in vals) / (n - 1))
+            se = max(se, sd / math.sqrt(n))
+        return mean, se
+
+    table_rows = []
+    for (p, v), rs in sorted(groups.items()):
+        mu, mu_err = combine([float(r["mu"]) for r in rs], [float(r["mu_err"] or 0) for r in rs])
+        tr = {"pressure_Pa": p, "sliding_velocity_m_s": v, "mu": mu, "mu_err": mu_err, "n_runs": len(rs),
+              "seeds": sorted({int(r["seed"]) for r in rs}), "steady": all(r["mu_steady"] == "True" for r in rs),
+              "runs": [r["run"] for r in rs]}
+        for c in ("mu_per_s", "d0_m2_s", "dz", "dx_l2"):
+            ok = all(r.get(f"valid_{c}") == "True" and r.get(c) not in ("", None) for r in rs)
+            if ok:
+                tr[c], tr[f"{c}_err"] = combine([float(r[c]) for r in rs], [float(r[f"{c}_err"]) for r in rs])
+            else:
+                tr[c], tr[f"{c}_err"] = None, None
+            tr[f"{c}_valid"] = ok
+        table_rows.append(tr)
+    laws = sorted({r.get("law") or "?" for r in rows})
+    table = {
+        "rows": table_rows,
+        "units": {"pressure_Pa": "Pa", "sliding_velocity_m_s": "m/s", "mu": "1", "mu_err": "1",
+                  "mu_per_s": "1/s", "d0_m2_s": "m^2/s", "dz": "m^3/s", "dx_l2": "m^5/s"},
+        "provenance": {
+            "source": str(campaign), "description": description, "laws": laws,
+            "dims": sorted({r.get("dim") for r in rows}), "created_utc": dt.datetime.now(dt.timezone.utc)
+            .isoformat(timespec="seconds"), "workflow": "workflows/mca_friction_sweep.py",
+            "combination": "mean over seeds; error max(sqrt(sum err^2)/n, std/sqrt(n)); Eq. 23 only if valid in all",
+        },
+    }
+    out.write_text(json.dumps(table, indent=1) + "\n")
+    return table
 
 
 def _cell(row: dict, key: str, scale, fmt: str) -> str:
@@ -98,6 +234,12 @@ def main(argv=None) -> int:
     ap.add_argument("--dim", type=int, default=2, choices=(2, 3))
     ap.add_argument("--np", type=int, default=1, help="MPI ranks per run")
     ap.add_argument("--seed", type=int, default=1, help="seed of the rough surfaces (same for every run)")
+    ap.add_argument("--seeds", type=lambda t: [int(x) for x in t.split(",") if x.strip()], default=None,
+                    help="comma-separated seeds: every (V, P) once per seed (default: --seed)")
+    ap.add_argument("--law", default=None, help="bond law (tribolmp.lammps.laws registry; default: the preset's)")
+    ap.add_argument("--campaign", default=None, help="append each finished run to this CSV (the study's table)")
+    ap.add_argument("--table", default=None, help="write the nanoscale table (JSON) from --campaign at the end")
+    ap.add_argument("--description", default="", help="one line stored in the nanoscale table's provenance")
     ap.add_argument("--out", default="mca_sweep", help="output folder")
     ap.add_argument("--resume", action="store_true", help="skip finished runs, resume interrupted ones")
     ap.add_argument("--reanalyse", action="store_true",
@@ -105,50 +247,60 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     preset = args.preset or ("smoke" if args.quick else "default")
     overrides = {k: v for k, v in (("duration", args.duration), ("box_length", args.box_length),
-                                   ("body_height", args.body_height), ("sink_depth", args.sink_depth)) if v is not None}
+                                   ("body_height", args.body_height), ("sink_depth", args.sink_depth),
+                                   ("bond_style", args.law)) if v is not None}
+    seeds = args.seeds or [args.seed]
+    campaign = Path(args.campaign) if args.campaign else None
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     rows: list[dict] = []
     failed = 0
     t_all = time.perf_counter()
-    for v in args.velocities:
-        for p in args.pressures:
-            name = f"v{v:g}_p{p / 1e6:g}MPa"
-            run_dir = out / name
-            row: dict = {"velocity_m_s": v, "pressure_Pa": p, "run": name}
-            try:
-                params = preset_params(preset, dim=args.dim, sliding_velocity=v, pressure=p, **overrides)
-                rates_path = run_dir / "rates.json"
-                if (args.resume and rates_path.exists()) or args.reanalyse:
-                    if not (run_dir / "traj.lammpstrj").exists():
-                        raise RunError(f"{run_dir}: no finished run to reanalyse")
-                    rates = compute_rates(run_dir) if args.reanalyse else json.loads(rates_path.read_text())
-                    meta = json.loads((run_dir / "meta.json").read_text())
-                    row.update(natoms=meta.get("n_atoms"), wall_time_s=meta.get("wall_time_s"),
-                               atom_steps_per_s=meta.get("atom_steps_per_s"))
-                else:
-                    res = run_mca(params, run_dir, seed=args.seed, resume=args.resume, np=args.np)
-                    rates = res.get("rates") or {}
-                    row.update(natoms=res.natoms, wall_time_s=res.wall_time_s, atom_steps_per_s=res.atom_steps_per_s)
-                row.update({k: rates.get(k) for k in rates if k not in ("units", "provenance", "layer_persistence")})
-                warn = rates.get("warnings") or []
-                row["status_text"] = "ok" if not warn else f"{len(warn)} warning(s), first: {warn[0][:70]}"
-                plot_friction(run_dir, run_dir / "mu_t.png", title=name)
-                plot_snapshot(run_dir, run_dir / "snapshot.png", title=f"{name}: last frame")
-                vp = VelocityProfile.from_output(run_dir).run(frames=_steady(rates, run_dir))
-                cp = CompositionProfile.from_output(run_dir).run(frames=_steady(rates, run_dir))
-                plot_profiles(vp.results, cp.results, run_dir / "profiles.png", title=name)
-            except (SetupError, OSError) as exc:
-                row["status_text"] = f"rejected: {exc}"
-                failed += 1
-            except RunError as exc:
-                row["status_text"] = f"failed: {exc}"
-                failed += 1
-            rows.append(row)
-            csv_path, md_path = write_tables(rows, out)
-            print(f"{name}: mu={_cell(row, 'mu', 1.0, '{:.3f}')} layer={_cell(row, 'layer_depth_m', 1e9, '{:.2f}')} nm "
-                  f"[{row['status_text'][:80]}]", flush=True)
+    points = [(v, p, sd) for v in args.velocities for p in args.pressures for sd in seeds]
+    for v, p, sd in points:
+        name = f"v{v:g}_p{p / 1e6:g}MPa" + (f"_s{sd}" if len(seeds) > 1 or args.seeds else "")
+        run_dir = out / name
+        row: dict = {"velocity_m_s": v, "pressure_Pa": p, "run": name, "seed": sd}
+        try:
+            params = preset_params(preset, dim=args.dim, sliding_velocity=v, pressure=p, **overrides)
+            rates_path = run_dir / "rates.json"
+            if (args.resume and rates_path.exists()) or args.reanalyse:
+                if not (run_dir / "traj.lammpstrj").exists():
+                    raise RunError(f"{run_dir}: no finished run to reanalyse")
+                rates = compute_rates(run_dir) if args.reanalyse else json.loads(rates_path.read_text())
+                meta = json.loads((run_dir / "meta.json").read_text())
+                row.update(natoms=meta.get("n_atoms"), wall_time_s=meta.get("wall_time_s"),
+                           atom_steps_per_s=meta.get("atom_steps_per_s"))
+            else:
+                res = run_mca(params, run_dir, seed=sd, resume=args.resume, np=args.np)
+                rates = res.get("rates") or {}
+                row.update(natoms=res.natoms, wall_time_s=res.wall_time_s, atom_steps_per_s=res.atom_steps_per_s)
+            row.update({k: rates.get(k) for k in rates if k not in ("units", "provenance", "layer_persistence")})
+            warn = rates.get("warnings") or []
+            row["status_text"] = "ok" if not warn else f"{len(warn)} warning(s), first: {warn[0][:70]}"
+            plot_friction(run_dir, run_dir / "mu_t.png", title=name)
+            plot_snapshot(run_dir, run_dir / "snapshot.png", title=f"{name}: last frame")
+            vp = VelocityProfile.from_output(run_dir).run(frames=_steady(rates, run_dir))
+            cp = CompositionProfile.from_output(run_dir).run(frames=_steady(rates, run_dir))
+            plot_profiles(vp.results, cp.results, run_dir / "profiles.png", title=name)
+            row["localized"] = localized(rates, 3 * params.automaton_diameter)
+            if campaign is not None:
+                meta = json.loads((run_dir / "meta.json").read_text())
+                append_campaign(campaign, campaign_row(row, rates, meta, params))
+        except (SetupError, OSError) as exc:
+            row["status_text"] = f"rejected: {exc}"
+            failed += 1
+        except RunError as exc:
+            row["status_text"] = f"failed: {exc}"
+            failed += 1
+        rows.append(row)
+        csv_path, md_path = write_tables(rows, out)
+        print(f"{name}: mu={_cell(row, 'mu', 1.0, '{:.3f}')} layer={_cell(row, 'layer_depth_m', 1e9, '{:.2f}')} nm "
+              f"[{row['status_text'][:80]}]", flush=True)
     print(f"wrote {csv_path} and {md_path} in {time.perf_counter() - t_all:.0f} s")
+    if args.table and campaign is not None and campaign.exists():
+        nanoscale_table(campaign, Path(args.table), description=args.description)
+        print(f"wrote {args.table}")
     print(md_path.read_text())
     return 3 if failed else 0
 
