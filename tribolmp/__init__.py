@@ -21,3 +21,20 @@ from .errors import LammpsError, ParameterError, RunError, SceneError, SetupErro
 __version__ = "0.1.0"
 
 __all__ = ["__version__", "SetupError", "RunError", "ParameterError", "SceneError", "LammpsError"]
+
+
+def run_chain(scene_or_path=None, out="tribolmp-run", **kwargs):
+    """Run a scene through the multiscale chain; returns a :class:`tribolmp.notebook.ChainResult`.
+
+    The notebook entry point: ``tribolmp.run_chain("rates_given", out="run")``.
+    See :func:`tribolmp.notebook.run_chain` for the parameters.  The package's
+    top level is a foundation (it must not import the chain, which sits above
+    it), so this façade loads :mod:`tribolmp.notebook` by name when called:
+    ``import tribolmp`` stays light and the import layers stay acyclic.
+    """
+    import importlib
+
+    return importlib.import_module(".notebook", __name__).run_chain(scene_or_path, out, **kwargs)
+
+
+__all__ += ["run_chain"]

@@ -365,9 +365,14 @@ def run_sweep(
     return res
 
 
-def _run_on_dask(todo, base, source, out, cache, workers, scheduler, resources, bar, rows) -> int:
+def make_client(workers: int = 2, scheduler: str | None = None):
+    """The sweep's Dask client: ``(client, cluster)``; ``cluster`` is None with ``scheduler``.
+
+    The LocalCluster is bound to 127.0.0.1 with no dashboard, one thread per
+    worker process (the benchmark uses the same engine as the sweep).
+    """
     try:
-        from distributed import Client, LocalCluster, as_completed
+        from distributed import Client, LocalCluster
     except ImportError:  # pragma: no cover - a core dependency
         raise SetupError("tribolmp sweep: expected the 'distributed' package (pip install distributed), got ImportError") from None
     cluster = None
@@ -382,6 +387,13 @@ def _run_on_dask(todo, base, source, out, cache, workers, scheduler, resources, 
             client = Client(scheduler, timeout=30)
         except (OSError, TimeoutError) as exc:
             raise SetupError(f"--scheduler: expected a reachable Dask scheduler, got {scheduler} ({_one_line(exc)})") from None
+    return client, cluster
+
+
+def _run_on_dask(todo, base, source, out, cache, workers, scheduler, resources, bar, rows) -> int:
+    from distributed import as_completed
+
+    client, cluster = make_client(workers, scheduler)
     try:
         n_workers = len(client.scheduler_info().get("workers", {})) or workers
         labels = {p["id"]: _label(p["vary"], p["seed"]) for p in todo}

@@ -172,7 +172,13 @@ class Contact(Stage):
                 params = dataclasses.replace(params, grid_points=int(opts["mesh"]), pixel_size=L / int(opts["mesh"]))
                 mesh_note = f"BEM grid {opts['mesh']} from the speed-error table (L = {L:g} m)"
             h, dx = rough_surface(params, surf_rng)
-            source = f"height map {params.surface_file}" if params.surface_file else "random surface from [roughness]"
+            if params.surface_file:
+                from ...models.topography.measured import surface_provenance
+
+                # Say which units and pixel size were used: the file's metadata or the scene's value.
+                source = f"height map {surface_provenance(params.surface_file, params.pixel_size)}"
+            else:
+                source = "random surface from [roughness]"
         res = solve_rough(
             h, dx, params.modulus, params.pressures, method=method, periodic=params.periodic,
             realizations=params.realizations, rng=ens_rng,

@@ -46,6 +46,7 @@ __all__ = [
     "to_surfacetopography",
     "require_surfacetopography",
     "rms_values",
+    "surface_provenance",
     "LENGTH_UNITS",
     "DETREND_MODES",
 ]
@@ -263,6 +264,22 @@ def read_surface(
         raise SurfaceFileError(f"{path}: expected >= 2 points per side, got grid {list(pts)}")
     return Surface(h=h, pixel_size=float(pixels[0]), format=fmt, unit_source=source, detrend=detrend,
                    path=str(path), periodic=bool(top.is_periodic), notes=tuple(notes))
+
+
+def surface_provenance(path, fallback_pixel_size: float | None = None) -> str:
+    """One line for reports: the file, its format and grid, and where units and pixel size came from.
+
+    ``fallback_pixel_size`` is the scene's ``[roughness].pixel_size``, which is
+    used (and so named) only for files that state no pixel size.
+    """
+    path = Path(path)
+    try:
+        return read_surface(path).describe()
+    except SurfaceFileError:
+        if fallback_pixel_size is None:
+            raise
+    surf = read_surface(path, pixel_size=fallback_pixel_size)
+    return surf.describe().replace(f"from {surf.unit_source}", "from [roughness].pixel_size (the file has none)")
 
 
 def _check_exists(path: Path) -> None:
