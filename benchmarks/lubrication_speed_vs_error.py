@@ -13,6 +13,18 @@ plus the power-law Reynolds solver against the closed-form power-law force.
 Timings are the minimum over repeats (the machine is shared), all in one run
 so ratios are side by side.
 
+Two further tables (issue 17):
+
+* ``_axisym.csv``: the damper's speed-up over an *accurate* axisymmetric
+  Reynolds solve at 1 % error, with the Reynolds solve made as fast as it
+  honestly can be: the finite-element solve, the exact first integral by
+  Gauss-Legendre (numpy, scalar call), the same in pure Python, and both
+  damper and quadrature vectorised over 1e5 gaps.  Errors are against the
+  closed form of the truncated paraboloid film, 6 pi eta R^2 V/h (S/(1+S))^2.
+* ``_mixed.csv`` and ``lubrication_mixed_squeeze.png``: the film-squeeze-out
+  figure of the mixed model (nominal film + summit dampers + MDR springs)
+  against the old summit-dampers-only model on the same rough profile.
+
 Usage::
 
     python benchmarks/lubrication_speed_vs_error.py [--quick] [--out CSV]
@@ -169,8 +181,143 @@ def main(argv=None) -> int:
     for r in sl_rows:
         print(f"{r['cells']:>7d}{r['time_s']:>11.3e}{r['gcb_time_s']:>11.3e}{r['log_slope']:>9.4f}"
               f"{r['err_vs_gcb']:>+10.2e}{r['err_couette_vs_reynolds']:>+11.2e}")
-    print(f"\nwrote {out}, {pl_out} and {sl_out}")
+    ax_out = out.with_name(out.stem + "_axisym.csv")
+    write_csv(ax_out, axisymmetric_speedup(args.quick))
+    mx_out = out.with_name(out.stem + "_mixed.csv")
+    mixed_squeeze_figure(mx_out, out.parent / "lubrication_mixed_squeeze.png", args.quick)
+    print(f"\nwrote {out}, {pl_out}, {sl_out}, {ax_out}, {mx_out}")
     return 0
+
+
+def _quad_python(R, eta, h0, V, nodes, xs, ws, xi_max):
+    """The exact first integral by Gauss-Legendre in pure Python (no numpy call overhead)."""
+    rc = math.sqrt(2.0 * R * h0)
+    s = 0.0
+    for x, w in zip(xs, ws):
+        xi = x * xi_max
+        r = rc * math.sinh(xi)
+        hh = h0 + r * r / (2.0 * R)
+        s += w * r**3 / hh**3 * rc * math.cosh(xi)
+    return 6.0 * math.pi * eta * V * s * xi_max
+
+
+def axisymmetric_speedup(quick: bool) -> list[dict]:
+    """Damper vs accurate axisymmetric Reynolds solves at 1 % error; prints the table, returns rows."""
+    import numpy as np
+
+    from tribolmp.models.lubrication import reference as ref
+    from tribolmp.models.lubrication.reduced import squeeze_damper_force
+    from tribolmp.models.lubrication.reynolds import ReynoldsParams, _gauss_legendre, quadrature_force, quadrature_force_many, solve
+
+    R, eta, V, dom = 1e-3, 0.1, 1e-3, 1000.0
+    S = dom**2
+    rows = []
+    for eps in ([1e-3] if quick else [1e-4, 1e-3, 1e-2]):
+        h = eps * R
+        exact = 6 * math.pi * eta * R**2 * V / h * (S / (1 + S)) ** 2  # truncated-disc closed form
+        stokes = ref.brenner_force(R, eta, h, V)
+
+        def add(method, res_s, t, f, per="call"):
+            rows.append(dict(h_over_R=eps, method=method, resolution=res_s, time_s=t, per=per,
+                             err_vs_reynolds_exact=f / exact - 1.0, err_vs_stokes=f / stokes - 1.0))
+
+        t, f = _time(lambda: squeeze_damper_force(R, eta, h, V))
+        add("damper", "-", t, f)
+        t, f = _time(lambda: 6 * math.pi * eta * R * R * V / h)
+        add("damper (inline)", "-", t, f)
+        for cells in (25, 50, 100, 200):
+            p = ReynoldsParams(radius=R, gap=h, velocity=V, viscosity=eta, cells=cells, domain=dom)
+            t, r = _time(lambda: solve(p), min_time=0.02)
+            add("reynolds FE (sparse)", f"cells={cells}", t, r.force)
+        for nodes in (4, 6, 8, 12, 16):
+            p = ReynoldsParams(radius=R, gap=h, velocity=V, viscosity=eta, cells=nodes, domain=dom)
+            t, f = _time(lambda: quadrature_force(p))
+            add("reynolds quadrature (numpy)", f"nodes={nodes}", t, f)
+            xs, ws = (list(v) for v in _gauss_legendre(nodes))
+            xi_max = math.asinh(dom)
+            t, f = _time(lambda: _quad_python(R, eta, h, V, nodes, xs, ws, xi_max))
+            add("reynolds quadrature (python)", f"nodes={nodes}", t, f)
+        gaps = np.full(10_000 if quick else 100_000, h)
+        t, f = _time(lambda: 6 * math.pi * eta * R * R * V / gaps, min_time=0.02)
+        add("damper (vectorised)", f"batch={gaps.size}", t / gaps.size, float(f[0]), per="gap")
+        for nodes in (6, 8, 12):
+            t, f = _time(lambda: quadrature_force_many(R, eta, gaps, V, nodes=nodes, domain=dom), min_time=0.02, repeats=2)
+            add("reynolds quadrature (vectorised)", f"nodes={nodes} batch={gaps.size}", t / gaps.size, float(f[0]), per="gap")
+
+    print("\n== axisymmetric squeeze: damper against Reynolds solves (error vs the exact truncated-disc film)")
+    print(f"{'h/R':>8} {'method':<34}{'resolution':<24}{'time':>11} {'per':<5}{'err vs Reynolds':>16}{'err vs Stokes':>15}")
+    for r in rows:
+        print(f"{r['h_over_R']:>8.0e} {r['method']:<34}{r['resolution']:<24}{r['time_s']:>11.3e} {r['per']:<5}"
+              f"{r['err_vs_reynolds_exact']:>+16.2e}{r['err_vs_stokes']:>+15.2e}")
+    print("\nspeed-up of the damper over the fastest Reynolds solve within 1 % of the exact thin-film force:")
+    for eps in sorted({r["h_over_R"] for r in rows}):
+        sub = [r for r in rows if r["h_over_R"] == eps]
+        td = min(r["time_s"] for r in sub if r["method"] == "damper")
+        tdv = min(r["time_s"] for r in sub if r["method"] == "damper (vectorised)")
+        for m in ("reynolds FE (sparse)", "reynolds quadrature (numpy)", "reynolds quadrature (python)",
+                  "reynolds quadrature (vectorised)"):
+            ok = [r for r in sub if r["method"] == m and abs(r["err_vs_reynolds_exact"]) < 0.01]
+            if ok:
+                best = min(ok, key=lambda r: r["time_s"])
+                base = tdv if "vectorised" in m else td
+                print(f"  h/R={eps:.0e}: {m:<34} {best['resolution']:<22} {best['time_s'] / base:>9.3g}x")
+                for r in sub:
+                    if r is best:
+                        r["speedup_of_damper"] = best["time_s"] / base
+    return rows
+
+
+def mixed_squeeze_figure(csv_path, png_path, quick: bool) -> None:
+    """The film-squeeze-out figure: rough MDR profile under 1 N through 0.1 Pa s, new model vs old."""
+    import numpy as np
+
+    from tribolmp.models.contact import rough
+    from tribolmp.models.lubrication.dynamics import MixedParams, mixed_approach
+    from tribolmp.models.lubrication.flow_factor import SQUARE_POISSON
+
+    psd = rough.self_affine_psd(0.5e-6, 0.8, 100e-6, 4e-6)
+    x, g = rough.mdr_profiles_from_psd(psd, 1024, 1e-6, 1, np.random.default_rng(12345))
+    g = g[0]
+    eta, W, gap0, L = 0.1, 1.0, 1e-6, 1024 * 1e-6
+    t_plate = 6 * eta * SQUARE_POISSON * L**4 * (g.mean() ** -2 - (g.mean() + gap0) ** -2) / W
+    t = np.concatenate([[0.0], np.geomspace(1e-9, 1.0, 120 if quick else 400)])
+    runs = {}
+    for name, kw in (("nominal film + summit dampers (new)", {}), ("smooth nominal film + summit dampers", {"flow_factor": "smooth"}),
+                     ("summit dampers only (old model)", {"nominal_film": False})):
+        r = mixed_approach(x, g, MixedParams(viscosity=eta, E_star=1.13e11, load=W, gap0=gap0, **kw), times=t)
+        runs[name] = (r.d, r.spring_force, r.contact_time)
+    rows = []
+    for i, tt in enumerate(t):
+        row = {"t_s": float(tt)}
+        for name, (d, fs, _) in runs.items():
+            key = name.split(" (")[0].replace(" + ", "+").replace(" ", "_")
+            row[f"{key}_separation_m"] = float(g.mean() - d[i])
+            row[f"{key}_solid_share"] = float(fs[i] / W)
+        rows.append(row)
+    write_csv(csv_path, rows)
+    first = {name: tc for name, (_, _, tc) in runs.items()}
+    print("\n== film squeeze-out (1.024 mm rough MDR profile, sigma 0.5 um, 1 N, 0.1 Pa s, 1 um above the top summit)")
+    for name, tc in first.items():
+        print(f"  {name:<40} first solid contact at ~{tc:.3g} s (output grid)")
+    print(f"  smooth-plate estimate to first touch: {t_plate:.3g} s")
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for (name, (d, fs, _)), c in zip(runs.items(), ("C0", "C2", "C3")):
+        ax.semilogx(t[1:], (g.mean() - d[1:]) * 1e6, color=c, label=name)
+        bx.semilogx(t[1:], fs[1:] / W, color=c, label=name)
+    ax.axhline(g.mean() * 1e6, color="0.5", lw=0.8, ls=":")
+    ax.axvline(t_plate, color="0.5", lw=0.8, ls="--")
+    ax.set(xlabel="t (s)", ylabel="flat to mean plane u (um)", title="approach of the flat")
+    bx.set(xlabel="t (s)", ylabel="solid share F_s / W", title="load sharing (rest: film)")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(png_path, dpi=110)
+    plt.close(fig)
 
 
 if __name__ == "__main__":  # pragma: no cover

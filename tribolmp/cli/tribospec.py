@@ -32,6 +32,9 @@ def configure(parser) -> None:
                           "the sd is estimated from the residuals in both")
     fit.add_argument("--weighting", choices=("none", "relative"), default=None,
                      help="older spelling: relative = --noise proportional")
+    fit.add_argument("--interval", choices=("auto", "profile", "calibrated"), default="auto",
+                     help="interval threshold: F form (profile), bootstrap-calibrated, or auto (calibrated only "
+                          "where the F form undercovers: stiffness model, proportional noise)")
     fit.add_argument("--bootstrap", type=int, default=0,
                      help="wild-bootstrap refits that widen the 68 %% interval (coverage then not tested)")
     fit.add_argument("--plot", default="tribospec_fit.png", help="PNG to write (default tribospec_fit.png)")
@@ -115,7 +118,7 @@ def _fit(args) -> int:
         prepare_file(args.plot, "--plot")
     curve = read_curve_csv(args.data, args.convention)
     res = fit_length(curve, args.model, background=not args.no_background, noise=args.noise, weighting=args.weighting,
-                     n_boot=args.bootstrap, rng=args.seed)
+                     n_boot=args.bootstrap, interval=args.interval, rng=args.seed)
     out = {k: res[k] for k in ("length_m", "length_std_m", "model", "residual", "length_interval_m",
                                "length_interval_95_m", "interval_levels", "interval_method", "noise_model",
                                "coverage_tested", "coverage_conditions", "bounded", "aic",

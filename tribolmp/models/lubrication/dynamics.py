@@ -365,7 +365,7 @@ def nominal_film_table(g, params: MixedParams, length: float, d_lo: float, d_hi:
     return d, c, Phi, closed
 
 
-def mixed_approach(x, g, params: MixedParams, *, normal_force=None) -> Result:
+def mixed_approach(x, g, params: MixedParams, *, normal_force=None, times=None) -> Result:
     """Rigid flat pressed onto a rough MDR profile through the film of the apparent contact.
 
     The flat at indentation d (d < 0: separated from the highest point) obeys
@@ -393,6 +393,9 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None) -> Result:
     params : MixedParams
     normal_force : callable, optional
         ``normal_force(x, g, d, E_star) -> N``; default the contact model's MDR.
+    times : array_like, optional
+        Increasing output times (s) starting at 0, instead of ``steps`` equal
+        steps over ``duration`` (e.g. log-spaced for a squeeze-out figure).
 
     Returns
     -------
@@ -448,7 +451,12 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None) -> Result:
     def phi_nom(dd):
         return float(phi_spline(math.log(gbar - dd)))
 
-    t = np.linspace(0.0, p.duration, p.steps + 1)
+    if times is None:
+        t = np.linspace(0.0, p.duration, p.steps + 1)
+    else:
+        t = np.asarray(times, dtype=float)
+        if t.ndim != 1 or t.size < 2 or t[0] != 0.0 or np.any(np.diff(t) <= 0):
+            raise ParameterError("times", "an increasing 1D array of times starting at 0 s", getattr(t, "shape", t))
     d = np.empty_like(t)
     Fs = np.zeros_like(t)
     d[0] = d0
@@ -493,7 +501,7 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None) -> Result:
         min_film=float(film.min()),
         summits=int(idx.size),
         apparent_length=float(length),
-        nit=p.steps,
+        nit=int(t.size - 1),
         normal_force_source=source,
         units={"t": "s", "d": "m", "separation": "m", "spring_force": "N", "fluid_force": "N",
                "film_resistance": "N s/m", "nominal_resistance": "N s/m", "summit_resistance": "N s/m",
