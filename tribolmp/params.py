@@ -372,8 +372,9 @@ def renamed(**old_to_new: str):
     ``@renamed(modulus="E_star")`` on a dataclass whose field is now ``E_star``:
     the constructor (and :func:`dataclasses.replace`) accepts ``modulus=`` as
     well (the old name wins when both are given, which is what ``replace``
-    passes), reading ``obj.modulus`` returns ``obj.E_star``, and
-    :func:`build_dataclass` (scene files) accepts the old key.  The aliases are
+    passes), reading ``obj.modulus`` returns ``obj.E_star``,
+    :func:`build_dataclass` (scene files) accepts the old key, and a
+    validation error names the field as the caller spelled it.  The aliases are
     listed in ``cls.__field_aliases__`` and documented in docs/conventions.md.
 
     Parameters
@@ -395,10 +396,20 @@ def renamed(**old_to_new: str):
         init = cls.__init__
 
         def __init__(self, *args: Any, **kwargs: Any) -> None:
+            used = {}
             for old, new in old_to_new.items():
                 if old in kwargs:
                     kwargs[new] = kwargs.pop(old)
-            init(self, *args, **kwargs)
+                    used[new] = old
+            try:
+                init(self, *args, **kwargs)
+            except ParameterError as exc:
+                # The message names the field as the caller spelled it (e.g. a CLI's old flag).
+                head, _, tail = exc.field.rpartition(".")
+                if tail in used:
+                    field = f"{head}.{used[tail]}" if head else used[tail]
+                    raise type(exc)(field, exc.expected, exc.got, exc.source) from None
+                raise
 
         __init__.__doc__ = init.__doc__
         __init__.__wrapped__ = init

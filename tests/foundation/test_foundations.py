@@ -174,7 +174,9 @@ def test_renamed_fields_keep_the_old_name_working():
     assert replace(P(E_star=1.0), modulus=5.0).E_star == 5.0
     assert replace(P(E_star=1.0), n=4).E_star == 1.0
     assert build_dataclass(P, {"modulus": 4.0}).E_star == 4.0
-    with pytest.raises(ParameterError, match="modulus|E_star"):
-        P(modulus=-1.0)
+    with pytest.raises(ParameterError, match=r"^modulus: expected"):
+        P(modulus=-1.0)  # the error names the field as the caller spelled it
+    with pytest.raises(ParameterError, match=r"^E_star: expected"):
+        P(E_star=-1.0)
     with pytest.raises(TypeError):
         renamed(x="nonexistent")(P)
