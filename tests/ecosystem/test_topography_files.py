@@ -226,3 +226,26 @@ def test_evolve_dim2_defaults_are_2d_intensities(capsys):
     # sum grows like log N, the 1D one converges).
     assert rq[2] < 1e-6
     assert 1 / 3 < rq[2] / rq[1] < 3
+
+
+def test_scene_overrides_a_measured_surface_only_when_given_and_the_report_says_which(tmp_path, rng):
+    from tribolmp.notebook import run_chain
+
+    h = rng.normal(size=(16, 16)) * 0.1
+    np.savetxt(tmp_path / "scan.txt", h)  # instrument text matrix: numbers in µm, no size stated
+    base = {"geometry": {"profile": "rough"}, "load": {"pressures": [1e6]}, "outputs": {"requested": ["stiffness"], "figures": False}}
+    rough = {"surface_file": str(tmp_path / "scan.txt"), "short_cutoff_wavelength": 8e-6, "realizations": 2}
+    from tribolmp.errors import SceneError
+
+    with pytest.raises((SceneError, SurfaceFileError), match="unit"):
+        run_chain({**base, "roughness": rough}, out=tmp_path / "a")
+    res = run_chain({**base, "roughness": {**rough, "surface_unit": "um", "surface_pixel_size": 1e-6,
+                                          "surface_detrend": "mean"}}, out=tmp_path / "b")
+    c = res["contact"]
+    assert c["pixel_size_m"] == 1e-6
+    assert c["surface_rms_m"] == pytest.approx(h.std() * 1e-6, rel=1e-9)  # µm -> m; mean removal keeps the rms
+    assert "override" in c["surface"] and "detrend mean" in c["surface"]
+    # An x3p states its size: with no override the file's pixel is used and the report says "file metadata".
+    Topography(h.T, (32.0, 32.0), unit="µm").to_x3p(str(tmp_path / "m.x3p"))
+    res = run_chain({**base, "roughness": {**rough, "surface_file": str(tmp_path / "m.x3p")}}, out=tmp_path / "c")
+    assert res["contact"]["pixel_size_m"] == pytest.approx(2e-6) and "file metadata" in res["contact"]["surface"]

@@ -124,8 +124,13 @@ class Roughness(Section):
     short_cutoff_wavelength: float = param(4e-6, unit="m", lo=0.0, lo_open=True, hi=10.0, doc="Short-wavelength cut-off.")
     grid_points: int = param(256, lo=8, hi=1 << 24, doc="Points per side of generated height maps.")
     pixel_size: float = param(2e-6, unit="m", lo=0.0, lo_open=True, hi=1.0, doc="Grid spacing of generated height maps.")
-    surface_file: str = param("", doc="Optional height map (.npy, heights in m); empty = generate.")
+    surface_file: str = param("", doc="Optional measured height map: tribolmp .npy/.asc/.xyz or any SurfaceTopography format (x3p, sur, opd, datx, gwy, plu, nc, ...); empty = generate.")
     realizations: int = param(16, lo=1, hi=100_000, doc="Ensemble size for 1D MDR profiles.")
+    # Measured surfaces (issue 16): units and pixel size come from the file; these override only when given.
+    surface_unit: str = param("", choices=("", "m", "mm", "um", "µm", "nm", "A", "Å", "pm"), doc="Length unit of a surface_file that states none (or overriding the file's); empty = from the file.")
+    surface_pixel_size: float = param(0.0, unit="m", lo=0.0, hi=1.0, doc="Pixel size overriding surface_file's metadata; 0 = from the file ([roughness].pixel_size for files without one).")
+    surface_detrend: str = param("none", choices=("none", "mean", "plane", "curvature"), doc="Detrending of surface_file before use.")
+    surface_missing: str = param("refuse", choices=("refuse", "fill"), doc="Missing points of surface_file: refuse the file or fill them (harmonic interpolation).")
 
     def _check(self) -> None:
         if self.short_cutoff_wavelength > self.rolloff_wavelength:

@@ -125,7 +125,8 @@ class Contact(Stage):
             if not path.is_absolute() and scene.source not in ("<default>", "<scene>"):
                 path = Path(scene.source).parent / path
             try:
-                h, _ = load_surface(path, r.pixel_size)
+                h, _ = load_surface(path, r.surface_pixel_size or None, unit=r.surface_unit or None,
+                                    detrend=r.surface_detrend, missing=r.surface_missing)
             except SetupError as exc:
                 raise SceneError("[roughness].surface_file", "a readable height map", str(exc), scene.source) from None
             n = int(max(h.shape))
@@ -176,7 +177,9 @@ class Contact(Stage):
                 from ...models.topography.measured import surface_provenance
 
                 # Say which units and pixel size were used: the file's metadata or the scene's value.
-                source = f"height map {surface_provenance(params.surface_file, params.pixel_size)}"
+                source = "height map " + surface_provenance(
+                    params.surface_file, params.pixel_size, pixel_size=params.surface_pixel_size or None,
+                    unit=params.surface_unit or None, detrend=params.surface_detrend, missing=params.surface_missing)
             else:
                 source = "random surface from [roughness]"
         res = solve_rough(

@@ -113,7 +113,11 @@ class RoughParams:
     rolloff_wavelength: float = param(100e-6, unit="m", lo=0.0, lo_open=True, doc="Generated surfaces: roll-off wavelength.")
     short_cutoff_wavelength: float = param(4e-6, unit="m", lo=0.0, lo_open=True, doc="Generated surfaces: short cut-off.")
     grid_points: int = param(256, lo=4, hi=1 << 14, doc="Generated surfaces: points per side.")
-    surface_file: str = param("", doc="Height map (.npy, m); empty = generate from the PSD.")
+    surface_file: str = param("", doc="Height map (.npy/.asc/.xyz or any SurfaceTopography format); empty = generate from the PSD.")
+    surface_unit: str = param("", doc="Length unit of surface_file when it states none (or overriding it); empty = from the file.")
+    surface_pixel_size: float = param(0.0, unit="m", lo=0.0, doc="Pixel size overriding surface_file's; 0 = from the file.")
+    surface_detrend: str = param("none", choices=("none", "mean", "plane", "curvature"), doc="Detrending of surface_file.")
+    surface_missing: str = param("refuse", choices=("refuse", "fill"), doc="Missing points of surface_file: refuse or fill.")
     seed: int = param(20060327, lo=0, hi=2**63 - 1, doc="Seed of the surface and ensemble draws.")
 
     def __post_init__(self) -> None:
@@ -528,6 +532,10 @@ def rough_params_from_scene(scene) -> RoughParams:
         short_cutoff_wavelength=rough.short_cutoff_wavelength,
         grid_points=rough.grid_points,
         surface_file=rough.surface_file,
+        surface_unit=getattr(rough, "surface_unit", ""),
+        surface_pixel_size=getattr(rough, "surface_pixel_size", 0.0),
+        surface_detrend=getattr(rough, "surface_detrend", "none"),
+        surface_missing=getattr(rough, "surface_missing", "refuse"),
         seed=scene.scene.seed,
     )
     if contact is not None:
@@ -563,7 +571,8 @@ def rough_surface(params: RoughParams, rng: np.random.Generator) -> tuple[np.nda
     from .rough import generate_surface, self_affine_psd
 
     if params.surface_file:
-        h, dx = load_surface(params.surface_file)
+        h, dx = load_surface(params.surface_file, params.surface_pixel_size or None, unit=params.surface_unit or None,
+                             detrend=params.surface_detrend, missing=params.surface_missing)
         return h, params.pixel_size if dx is None else dx
     psd = self_affine_psd(params.rms_height, params.hurst, params.rolloff_wavelength, params.short_cutoff_wavelength)
     return generate_surface(params.grid_points, params.pixel_size, psd, rng), params.pixel_size

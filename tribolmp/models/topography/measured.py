@@ -266,19 +266,20 @@ def read_surface(
                    path=str(path), periodic=bool(top.is_periodic), notes=tuple(notes))
 
 
-def surface_provenance(path, fallback_pixel_size: float | None = None) -> str:
+def surface_provenance(path, fallback_pixel_size: float | None = None, **options) -> str:
     """One line for reports: the file, its format and grid, and where units and pixel size came from.
 
     ``fallback_pixel_size`` is the scene's ``[roughness].pixel_size``, which is
-    used (and so named) only for files that state no pixel size.
+    used (and so named) only for files that state no pixel size; ``options``
+    are those of :func:`read_surface` (overrides, detrend, missing).
     """
     path = Path(path)
     try:
-        return read_surface(path).describe()
+        return read_surface(path, **options).describe()
     except SurfaceFileError:
-        if fallback_pixel_size is None:
+        if fallback_pixel_size is None or options.get("pixel_size") is not None:
             raise
-    surf = read_surface(path, pixel_size=fallback_pixel_size)
+    surf = read_surface(path, **{**options, "pixel_size": fallback_pixel_size})
     return surf.describe().replace(f"from {surf.unit_source}", "from [roughness].pixel_size (the file has none)")
 
 
