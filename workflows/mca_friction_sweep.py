@@ -184,6 +184,42 @@ def nanoscale_table(campaign: Path, out: Path, *, description: str) -> dict:
     return table
 
 
+def campaign_figures(campaign: Path, out_dir: Path, prefix: str = "mca_study") -> list[Path]:
+    """Draw mu(P) per V with error bars and the layer depth (P, V) from the campaign CSV; return the PNGs."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    with campaign.open() as fh:
+        rows = [r for r in csv.DictReader(fh) if r.get("mu") not in ("", None)]
+    out_dir.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for key, err, label, scale, name in (("mu", "mu_err", "mu", 1.0, "mu"),
+                                         ("layer_depth_m", "layer_depth_err_m", "layer depth (nm)", 1e9, "layer")):
+        fig, ax = plt.subplots(figsize=(5, 3.4))
+        for v in sorted({float(r["sliding_velocity_m_s"]) for r in rows}):
+            sel = sorted((r for r in rows if float(r["sliding_velocity_m_s"]) == v and r[key] not in ("", None)),
+                         key=lambda r: float(r["pressure_Pa"]))
+            if not sel:
+                continue
+            ax.errorbar([float(r["pressure_Pa"]) * 1e-6 for r in sel], [float(r[key]) * scale for r in sel],
+                        yerr=[float(r[err] or 0) * scale for r in sel], fmt="o", capsize=3, label=f"V = {v:g} m/s",
+                        mfc="none" if key == "mu" else None)
+        ax.set_xscale("symlog", linthresh=1.0)
+        ax.set_xlabel("P (MPa)")
+        ax.set_ylabel(label)
+        laws = sorted({r.get("law") or "?" for r in rows})
+        ax.set_title(f"{label} (law {', '.join(laws)}; one marker per run)", fontsize=8)
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        path = out_dir / f"{prefix}_{name}.png"
+        fig.savefig(path, dpi=90)
+        plt.close(fig)
+        paths.append(path)
+    return paths
+
+
 def _cell(row: dict, key: str, scale, fmt: str) -> str:
     v = row.get(key)
     if v is None:
@@ -231,6 +267,8 @@ def main(argv=None) -> int:
     ap.add_argument("--box-length", type=float, default=None, help="periodic length (m)")
     ap.add_argument("--body-height", type=float, default=None, help="height of each body (m)")
     ap.add_argument("--sink-depth", type=float, default=None, help="heat-sink thickness near base and slider (m)")
+    ap.add_argument("--roughness-rms", type=float, default=None, help="rms height of each initial surface (m)")
+    ap.add_argument("--dump-interval", type=float, default=None, help="trajectory interval (s)")
     ap.add_argument("--dim", type=int, default=2, choices=(2, 3))
     ap.add_argument("--np", type=int, default=1, help="MPI ranks per run")
     ap.add_argument("--seed", type=int, default=1, help="seed of the rough surfaces (same for every run)")
@@ -240,6 +278,7 @@ def main(argv=None) -> int:
     ap.add_argument("--campaign", default=None, help="append each finished run to this CSV (the study's table)")
     ap.add_argument("--table", default=None, help="write the nanoscale table (JSON) from --campaign at the end")
     ap.add_argument("--description", default="", help="one line stored in the nanoscale table's provenance")
+    ap.add_argument("--figures", default=None, help="folder for the campaign figures (mu(P), layer(P)) at the end")
     ap.add_argument("--out", default="mca_sweep", help="output folder")
     ap.add_argument("--resume", action="store_true", help="skip finished runs, resume interrupted ones")
     ap.add_argument("--reanalyse", action="store_true",
@@ -248,7 +287,8 @@ def main(argv=None) -> int:
     preset = args.preset or ("smoke" if args.quick else "default")
     overrides = {k: v for k, v in (("duration", args.duration), ("box_length", args.box_length),
                                    ("body_height", args.body_height), ("sink_depth", args.sink_depth),
-                                   ("bond_style", args.law)) if v is not None}
+                                   ("bond_style", args.law), ("roughness_rms", args.roughness_rms),
+                                   ("dump_interval", args.dump_interval)) if v is not None}
     seeds = args.seeds or [args.seed]
     campaign = Path(args.campaign) if args.campaign else None
     out = Path(args.out)
@@ -287,12 +327,17 @@ def main(argv=None) -> int:
             if campaign is not None:
                 meta = json.loads((run_dir / "meta.json").read_text())
                 append_campaign(campaign, campaign_row(row, rates, meta, params))
+            row["finished"] = True
         except (SetupError, OSError) as exc:
             row["status_text"] = f"rejected: {exc}"
             failed += 1
         except RunError as exc:
             row["status_text"] = f"failed: {exc}"
             failed += 1
+        if campaign is not None and not row.get("finished"):
+            # a failed run is a row too (status says why), so the table shows what is missing
+            append_campaign(campaign, {"run": name, "pressure_Pa": p, "sliding_velocity_m_s": v, "seed": sd,
+                                       "law": overrides.get("bond_style"), "status": row["status_text"]})
         rows.append(row)
         csv_path, md_path = write_tables(rows, out)
         print(f"{name}: mu={_cell(row, 'mu', 1.0, '{:.3f}')} layer={_cell(row, 'layer_depth_m', 1e9, '{:.2f}')} nm "
@@ -301,6 +346,9 @@ def main(argv=None) -> int:
     if args.table and campaign is not None and campaign.exists():
         nanoscale_table(campaign, Path(args.table), description=args.description)
         print(f"wrote {args.table}")
+    if args.figures and campaign is not None and campaign.exists():
+        for path in campaign_figures(campaign, Path(args.figures)):
+            print(f"wrote {path}")
     print(md_path.read_text())
     return 3 if failed else 0
 
