@@ -12,8 +12,10 @@ Two kinds of task, through the same Dask engine as ``tribolmp sweep``
   core).  It measures the real speed-up on this machine; on a shared machine
   its efficiency is bounded by the free cores.
 
-Efficiency E = (N x T_task) / (k x T_wall), where T_task is the mean of the
-tasks' own measured durations and T_wall includes the cluster start-up.
+Efficiency E = (N x T_task) / (k x T), T_task the mean of the tasks' own
+measured durations: ``efficiency_run`` with T the time from submission to the
+last result (cluster up), ``efficiency_total`` with T including the cluster's
+start-up and shutdown (what a short sweep pays once).
 Writes ``benchmarks/results/sweep_parallel_efficiency[_quick].csv``.
 """
 
@@ -66,17 +68,23 @@ def run(kind: str, n_tasks: int, seconds: float, workers: int, reps: int) -> dic
     t0 = time.perf_counter()
     client, cluster = make_client(workers)
     try:
+        client.wait_for_workers(workers)
+        t1 = time.perf_counter()
         fn, arg = (_sleep_task, seconds) if kind == "sleep" else (_cpu_task, reps)
         futs = [client.submit(fn, arg, pure=False, key=f"{kind}-{i}") for i in range(n_tasks)]
         durations = client.gather(futs)
+        t2 = time.perf_counter()
     finally:
         client.close()
         cluster.close()
     wall = time.perf_counter() - t0
     t_task = sum(durations) / len(durations)
-    eff = n_tasks * t_task / (workers * wall)
-    return {"kind": kind, "tasks": n_tasks, "workers": workers, "task_s": round(t_task, 3), "wall_s": round(wall, 3),
-            "ideal_wall_s": round(n_tasks * t_task / workers, 3), "efficiency": round(eff, 4),
+    work = n_tasks * t_task
+    return {"kind": kind, "tasks": n_tasks, "workers": workers, "task_s": round(t_task, 3),
+            "startup_s": round(t1 - t0, 3), "run_s": round(t2 - t1, 3), "wall_s": round(wall, 3),
+            "ideal_run_s": round(work / workers, 3),
+            # E_run: scheduling only (the cluster is up); E_total: also the cluster start-up and shutdown.
+            "efficiency_run": round(work / (workers * (t2 - t1)), 4), "efficiency_total": round(work / (workers * wall), 4),
             "cpus": os.cpu_count(), "load_1min": round(os.getloadavg()[0], 2)}
 
 

@@ -377,10 +377,11 @@ def make_client(workers: int = 2, scheduler: str | None = None):
         raise SetupError("tribolmp sweep: expected the 'distributed' package (pip install distributed), got ImportError") from None
     cluster = None
     if scheduler is None:
-        # Loopback only, no dashboard: nothing listens beyond this machine.  One thread per worker
+        # Loopback only (scheduler, workers and their HTTP endpoints on 127.0.0.1, free ports: a busy
+        # 8787 is no obstacle): nothing listens beyond this machine.  One thread per worker
         # process: the chain's numpy/LAMMPS work is not GIL-free, processes give real parallelism.
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                               dashboard_address=None, silence_logs=40)
+                               dashboard_address="127.0.0.1:0", worker_dashboard_address="127.0.0.1:0", silence_logs=40)
         client = Client(cluster)
     else:
         try:

@@ -182,3 +182,21 @@ def test_a_killed_sweep_resumes_and_a_second_sweep_reuses_shared_points(tmp_path
         statuses = {n: d["status"] for n, d in rep["stage_details"].items() if d["status"] in ("computed", "cached")}
         shared = p["vary"]["kinematics.sliding_velocity"] == 0.02
         assert set(statuses.values()) == ({"cached"} if shared else {"computed"}), statuses
+
+
+def test_local_cluster_listens_on_loopback_only():
+    """No network: the scheduler, the workers and their HTTP endpoints bind 127.0.0.1 (free ports, not a fixed 8787)."""
+    import psutil
+
+    from tribolmp.campaign import make_client
+
+    client, cluster = make_client(1)
+    try:
+        me = psutil.Process()
+        pids = {me.pid} | {p.pid for p in me.children(recursive=True)}
+        listening = [c for c in psutil.net_connections(kind="inet") if c.status == psutil.CONN_LISTEN and c.pid in pids]
+        assert listening, "found no listening socket of the cluster"
+        assert all(c.laddr.ip == "127.0.0.1" for c in listening), listening
+    finally:
+        client.close()
+        cluster.close()
