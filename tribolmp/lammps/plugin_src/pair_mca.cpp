@@ -1,0 +1,635 @@
+/* ---------------------------------------------------------------------
+   tribolmp MCA plugin: pair style mca (see pair_mca.h and mca_law.h)
+
+   Step of the law, for every local automaton i and every neighbour j of a
+   FULL neighbour list (each pair is evaluated on the ranks of both partners,
+   in the canonical orientation a = smaller ID, b = larger ID, so both copies
+   of the pair state evolve identically and no reverse communication is
+   needed):
+     1. ghosts receive X (mean stress term) and the pending plastic strain
+        increment of their automaton (forward communication);
+     2. the pair state (plastic offsets, tangential displacement, relative
+        rotation) is advanced, links break, contacts weld;
+     3. pair forces and torques are applied to i, the elastic pair forces are
+        summed into i's Love-Weber stress;
+     4. each automaton's stress is returned to the von Mises yield surface and
+        the increment of plastic strain becomes pending for the next step.
+   State updates happen once per timestep: the force evaluations of a run's
+   setup (after read_restart, or of a second run command) recompute forces
+   from the stored state without advancing it, so a restarted run continues
+   the uninterrupted one.
+------------------------------------------------------------------------- */
+
+#include "pair_mca.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "fix_mca_state.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+#include "utils.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace MCALaw;
+
+using FS = FixMCAState;
+
+PairMCA::PairMCA(LAMMPS *lmp) :
+    Pair(lmp), link_init(1), link_tol(0.05), cutfac(1.25), maxrad(0.0), fix(nullptr),
+    cache(nullptr), ncache(nullptr), maxcache_atoms(0), coeffset(0)
+{
+  single_enable = 0;
+  restartinfo = 1;
+  one_coeff = 1;
+  manybody_flag = 1;
+  no_virial_fdotr_compute = 1;
+  finitecutflag = 1;
+  comm_forward = 7;
+  nextra = NTALLY;
+  pvector = new double[NTALLY];
+  for (int k = 0; k < NTALLY; k++) pvector[k] = 0.0;
+  cacheflat = nullptr;
+  cacheoff = nullptr;
+  maxflat = 0;
+  sacc = nullptr;
+  maxsacc = 0;
+}
+
+PairMCA::~PairMCA()
+{
+  delete[] pvector;
+  memory->destroy(cacheflat);
+  memory->destroy(cacheoff);
+  memory->destroy(sacc);
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+  }
+}
+
+void PairMCA::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes + 1;
+  memory->create(setflag, n, n, "pair:setflag");
+  memory->create(cutsq, n, n, "pair:cutsq");
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) setflag[i][j] = 0;
+}
+
+void PairMCA::settings(int narg, char **arg)
+{
+  int iarg = 0;
+  while (iarg < narg) {
+    if (iarg + 2 > narg) error->all(FLERR, "pair_style mca: keyword {} needs a value", arg[iarg]);
+    if (strcmp(arg[iarg], "link_init") == 0) {
+      if (strcmp(arg[iarg + 1], "none") == 0) link_init = 0;
+      else if (strcmp(arg[iarg + 1], "same") == 0) link_init = 1;
+      else if (strcmp(arg[iarg + 1], "all") == 0) link_init = 2;
+      else error->all(FLERR, "pair_style mca: link_init: expected none|same|all, got {}", arg[iarg + 1]);
+    } else if (strcmp(arg[iarg], "link_tol") == 0) {
+      link_tol = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (link_tol < 0.0 || link_tol > 0.2)
+        error->all(FLERR, "pair_style mca: link_tol: expected 0-0.2, got {}", link_tol);
+    } else if (strcmp(arg[iarg], "cutoff") == 0) {
+      cutfac = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (cutfac < 1.05 || cutfac > 3.0)
+        error->all(FLERR, "pair_style mca: cutoff: expected 1.05-3 (x max diameter), got {}", cutfac);
+    } else
+      error->all(FLERR, "pair_style mca: unknown keyword {}", arg[iarg]);
+    iarg += 2;
+  }
+}
+
+void PairMCA::coeff(int narg, char **arg)
+{
+  if (narg != 12)
+    error->all(FLERR, "pair_coeff mca: expected '* * G nu sigma_y sigma_0 H mu eta weld_factor "
+               "weld_onset damp' (12 words), got {}", narg);
+  if (strcmp(arg[0], "*") != 0 || strcmp(arg[1], "*") != 0)
+    error->all(FLERR, "pair_coeff mca: one material only: expected 'pair_coeff * * ...', got {} {}",
+               arg[0], arg[1]);
+  if (!allocated) allocate();
+  const char *names[10] = {"G", "nu", "sigma_y", "sigma_0", "H", "mu", "eta", "weld_factor",
+                           "weld_onset", "damp"};
+  double v[10];
+  for (int k = 0; k < 10; k++) v[k] = utils::numeric(FLERR, arg[k + 2], false, lmp);
+  mat.dim = domain->dimension;
+  mat.G = v[0]; mat.nu = v[1]; mat.sy = v[2]; mat.s0 = v[3]; mat.H = v[4];
+  mat.mu = v[5]; mat.eta = v[6]; mat.wfac = v[7]; mat.wonset = v[8]; mat.damp = v[9];
+  if (!(mat.G > 0.0)) error->all(FLERR, "pair_coeff mca: {}: expected > 0, got {}", names[0], v[0]);
+  // the lagged mean-stress term converges for |alpha| < 1
+  const double nulo = (mat.dim == 3) ? -0.25 : -0.5;
+  if (!(mat.nu > nulo && mat.nu < 0.5))
+    error->all(FLERR, "pair_coeff mca: nu: expected in ({}, 0.5) in {}D, got {}", nulo, mat.dim, v[1]);
+  if (!(mat.sy > 0.0)) error->all(FLERR, "pair_coeff mca: sigma_y: expected > 0, got {}", v[2]);
+  if (!(mat.s0 >= mat.sy))
+    error->all(FLERR, "pair_coeff mca: sigma_0: expected >= sigma_y {}, got {}", mat.sy, v[3]);
+  if (!(mat.H >= 0.0)) error->all(FLERR, "pair_coeff mca: H: expected >= 0, got {}", v[4]);
+  if (!(mat.mu >= 0.0)) error->all(FLERR, "pair_coeff mca: mu: expected >= 0, got {}", v[5]);
+  if (!(mat.eta >= 0.0)) error->all(FLERR, "pair_coeff mca: eta: expected >= 0, got {}", v[6]);
+  if (!(mat.wfac >= 0.0 && mat.wfac <= 1.0))
+    error->all(FLERR, "pair_coeff mca: weld_factor: expected 0-1, got {}", v[7]);
+  if (!(mat.wonset >= 0.0)) error->all(FLERR, "pair_coeff mca: weld_onset: expected >= 0, got {}", v[8]);
+  if (!(mat.damp >= 0.0 && mat.damp <= 1.0))
+    error->all(FLERR, "pair_coeff mca: damp: expected 0-1, got {}", v[9]);
+  mat.derive();
+  const int n = atom->ntypes;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) setflag[i][j] = 1;
+  coeffset = 1;
+  ensure_fix();
+}
+
+void PairMCA::ensure_fix()
+{
+  Fix *f = modify->get_fix_by_id("mca_state");
+  if (!f) f = modify->add_fix("mca_state all mca/state");
+  fix = dynamic_cast<FixMCAState *>(f);
+  if (!fix) error->all(FLERR, "pair mca: fix ID mca_state exists but is not fix mca/state");
+}
+
+void PairMCA::init_style()
+{
+  if (!atom->radius_flag || !atom->omega_flag || !atom->torque_flag || !atom->rmass_flag)
+    error->all(FLERR, "pair mca: needs per-atom radius, omega, torque and mass "
+               "(atom_style bpm/sphere or sphere)");
+  if (comm->ghost_velocity == 0)
+    error->all(FLERR, "pair mca: needs ghost velocities: add 'comm_modify vel yes'");
+  if (!coeffset) error->all(FLERR, "pair mca: pair_coeff * * ... not set");
+  mat.dim = domain->dimension;
+  mat.derive();
+  neighbor->add_request(this, NeighConst::REQ_FULL);
+  ensure_fix();
+  double mr = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) mr = (atom->radius[i] > mr) ? atom->radius[i] : mr;
+  MPI_Allreduce(&mr, &maxrad, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (maxrad <= 0.0) error->all(FLERR, "pair mca: all automata have zero radius");
+}
+
+double PairMCA::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0) error->all(FLERR, "pair mca: coefficients for types {} {} not set", i, j);
+  return cutfac * 2.0 * maxrad;
+}
+
+/* ----------------------------------------------------------------------
+   slots of the neighbour list: after each rebuild every neighbour of each
+   local atom is mapped to its slot (or -1); partners that left the list are
+   dropped (a link that left the neighbour list counts as broken)
+------------------------------------------------------------------------- */
+
+int PairMCA::find_slot(int i, double jtag)
+{
+  for (int k = 0; k < fix->maxpartner; k++)
+    if (fix->slots[i][k * FS::NSLOT + FS::S_TAG] == jtag) return k;
+  return -1;
+}
+
+int PairMCA::new_slot(int i, double jtag)
+{
+  for (int k = 0; k < fix->maxpartner; k++) {
+    double *s = fix->slot(i, k);
+    if (s[FS::S_TAG] == 0.0) {
+      memset(s, 0, sizeof(double) * FS::NSLOT);
+      s[FS::S_TAG] = jtag;
+      return k;
+    }
+  }
+  error->one(FLERR, "pair mca: automaton {} has more than {} linked or touching partners; "
+             "declare 'fix mca_state all mca/state maxpartner N' with a larger N",
+             atom->tag[i], fix->maxpartner);
+  return -1;
+}
+
+void PairMCA::rebuild_cache()
+{
+  const int inum = list->inum;
+  int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
+  const int nlocal = atom->nlocal;
+  tagint *tag = atom->tag;
+  if (atom->nmax > maxcache_atoms) {
+    maxcache_atoms = atom->nmax;
+    memory->destroy(cacheoff);
+    memory->create(cacheoff, maxcache_atoms, "pair:mca:cacheoff");
+  }
+  bigint total = 0;
+  for (int ii = 0; ii < inum; ii++) total += numneigh[ilist[ii]];
+  if (total > maxflat) {
+    maxflat = total + total / 4 + 16;
+    memory->destroy(cacheflat);
+    memory->create(cacheflat, maxflat, "pair:mca:cacheflat");
+  }
+  const int mp = fix->maxpartner;
+  int *seen = new int[mp];
+  bigint off = 0;
+  for (int i = 0; i < nlocal; i++) cacheoff[i] = -1;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    cacheoff[i] = off;
+    for (int k = 0; k < mp; k++) seen[k] = 0;
+    int *jlist = firstneigh[i];
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const int k = find_slot(i, (double) tag[j]);
+      if (k >= 0) {
+        if (seen[k])
+          error->one(FLERR, "pair mca: automata {} and {} see each other twice; the periodic box "
+                     "must be longer than twice the pair cutoff", tag[i], tag[j]);
+        seen[k] = 1;
+      }
+      cacheflat[off + jj] = k;
+    }
+    off += numneigh[i];
+    for (int k = 0; k < mp; k++) {
+      double *s = fix->slot(i, k);
+      if (s[FS::S_TAG] == 0.0 || seen[k]) continue;
+      const int kind = static_cast<int>(s[FS::S_KIND]);
+      if ((kind == FS::LINK || kind == FS::WELD) && (double) tag[i] < s[FS::S_TAG])
+        fix->autom[i][FS::A_LB] += 1.0;
+      memset(s, 0, sizeof(double) * FS::NSLOT);
+    }
+  }
+  delete[] seen;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairMCA::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  if (!fix) ensure_fix();
+
+  double **x = atom->x, **v = atom->v, **f = atom->f;
+  double **omega = atom->omega, **torque = atom->torque;
+  double *radius = atom->radius, *rmass = atom->rmass;
+  tagint *tag = atom->tag;
+  tagint *mol = atom->molecule_flag ? atom->molecule : nullptr;
+  const int nlocal = atom->nlocal;
+  const int dim = domain->dimension;
+  const double dt = update->dt;
+  const bool advance = (double) update->ntimestep > fix->last_commit;
+  const bool init_links = advance && !fix->initialized && link_init != 0;
+
+  comm->forward_comm(this);
+  if (neighbor->ago == 0 || cacheoff == nullptr) rebuild_cache();
+
+  if (nlocal > maxsacc) {
+    maxsacc = atom->nmax;
+    memory->destroy(sacc);
+    memory->create(sacc, maxsacc, 8, "pair:mca:sacc");
+  }
+  for (int i = 0; i < nlocal; i++)
+    for (int k = 0; k < 8; k++) sacc[i][k] = 0.0;
+
+  double tally_links = 0.0, tally_cross = 0.0, tally_contacts = 0.0;
+  double **autom = fix->autom;
+
+  const int inum = list->inum;
+  int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const double itag = (double) tag[i];
+    int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    int *cache_i = &cacheflat[cacheoff[i]];
+
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double jtag = (double) tag[j];
+      if (jtag == itag) continue;
+      const double dbar = radius[i] + radius[j];
+      double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
+      const double rsq = dx * dx + dy * dy + dz * dz;
+      int k = cache_i[jj];
+      const bool same_body = !mol || mol[i] == mol[j];
+      if (k < 0) {
+        const bool mklink = init_links && rsq < (1.0 + link_tol) * (1.0 + link_tol) * dbar * dbar &&
+            (link_init == 2 || same_body);
+        if (rsq >= dbar * dbar && !mklink) continue;
+        k = new_slot(i, jtag);
+        cache_i[jj] = k;
+        double *s = fix->slot(i, k);
+        const double sg = (itag < jtag) ? 1.0 : -1.0;
+        s[FS::S_KIND] = mklink ? FS::LINK : FS::CONTACT;
+        s[FS::S_RP + 0] = sg * dx;
+        s[FS::S_RP + 1] = sg * dy;
+        s[FS::S_RP + 2] = sg * dz;
+        // an initial link is stress-free at its current length
+        if (mklink) s[FS::S_PN] = (std::sqrt(rsq) - dbar) / dbar;
+      }
+      double *s = fix->slot(i, k);
+      const bool i_is_a = itag < jtag;
+      const double sg = i_is_a ? 1.0 : -1.0;
+      const int a = i_is_a ? i : j, b = i_is_a ? j : i;
+      // canonical relative position, a -> b
+      const double R[3] = {sg * dx, sg * dy, sg * dz};
+      const double r = std::sqrt(rsq);
+      const double n[3] = {R[0] / r, R[1] / r, R[2] / r};
+      const double eraw = (r - dbar) / dbar;
+      int kind = static_cast<int>(s[FS::S_KIND]);
+
+      if (kind == FS::CONTACT && eraw >= 0.0) {    // contact opened: forget it
+        memset(s, 0, sizeof(double) * FS::NSLOT);
+        cache_i[jj] = -1;
+        continue;
+      }
+
+      const double ra = radius[a], rb = radius[b];
+      const double ws[3] = {ra * omega[a][0] + rb * omega[b][0], ra * omega[a][1] + rb * omega[b][1],
+                            ra * omega[a][2] + rb * omega[b][2]};
+      const double wxn[3] = {ws[1] * n[2] - ws[2] * n[1], ws[2] * n[0] - ws[0] * n[2],
+                             ws[0] * n[1] - ws[1] * n[0]};
+      // velocity of b's contact point relative to a's
+      const double vrel[3] = {v[b][0] - v[a][0] - wxn[0], v[b][1] - v[a][1] - wxn[1],
+                              v[b][2] - v[a][2] - wxn[2]};
+      double *xi = &s[FS::S_XI];
+
+      if (advance) {
+        // tangential displacement: keep xi in the tangent plane (magnitude conserved),
+        // then add the tangential part of this step's contact-point displacement
+        const double xn = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2];
+        const double m0 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2];
+        for (int c = 0; c < 3; c++) xi[c] -= xn * n[c];
+        const double m1 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2];
+        if (m1 > 0.0) {
+          const double sc = std::sqrt(m0 / m1);
+          for (int c = 0; c < 3; c++) xi[c] *= sc;
+        }
+        double du[3];
+        for (int c = 0; c < 3; c++) du[c] = R[c] - s[FS::S_RP + c] - dt * wxn[c];
+        const double dun = du[0] * n[0] + du[1] * n[1] + du[2] * n[2];
+        for (int c = 0; c < 3; c++) {
+          xi[c] += du[c] - dun * n[c];
+          s[FS::S_RP + c] = R[c];
+        }
+        if (kind == FS::LINK || kind == FS::WELD) {
+          // plastic offsets: the pending plastic strain increments of a and b
+          // (mean of the two halves of the pair) leave the elastic pair strain
+          const double *pa = &autom[a][FS::A_DEP], *pb = &autom[b][FS::A_DEP];
+          double D[6];
+          for (int c = 0; c < 6; c++) D[c] = 0.5 * (pa[c] + pb[c]);
+          const double Dn[3] = {D[0] * n[0] + D[3] * n[1] + D[4] * n[2],
+                                D[3] * n[0] + D[1] * n[1] + D[5] * n[2],
+                                D[4] * n[0] + D[5] * n[1] + D[2] * n[2]};
+          const double nDn = n[0] * Dn[0] + n[1] * Dn[1] + n[2] * Dn[2];
+          s[FS::S_PN] += nDn;
+          for (int c = 0; c < 3; c++) xi[c] -= dbar * (Dn[c] - nDn * n[c]);
+          for (int c = 0; c < 3; c++) s[FS::S_TH + c] += dt * (omega[b][c] - omega[a][c]);
+        }
+      }
+
+      const double A = pair_area(dbar, dim);
+      const double sf = shear_factor(mat, dbar);
+      const double Xbar = 0.5 * (autom[a][FS::A_X] + autom[b][FS::A_X]);
+      const bool cross = !same_body;
+      double sn = 0.0, tau[3] = {0.0, 0.0, 0.0};
+
+      if (kind == FS::LINK || kind == FS::WELD) {
+        sn = link_normal(mat, eraw - s[FS::S_PN], Xbar);
+        for (int c = 0; c < 3; c++) tau[c] = sf * xi[c];
+        const double tm = std::sqrt(tau[0] * tau[0] + tau[1] * tau[1] + tau[2] * tau[2]);
+        const double strength = (kind == FS::LINK) ? mat.s0 : mat.wfac * mat.s0;
+        if (advance && link_breaks(sn, tm, strength)) {
+          if (i_is_a) {
+            autom[i][FS::A_LB] += 1.0;
+            if (cross) autom[i][FS::A_CB] += 1.0;
+          }
+          kind = FS::CONTACT;
+          s[FS::S_KIND] = kind;
+          s[FS::S_PN] = 0.0;
+          for (int c = 0; c < 3; c++) s[FS::S_TH + c] = 0.0;
+          if (eraw >= 0.0) {
+            memset(s, 0, sizeof(double) * FS::NSLOT);
+            cache_i[jj] = -1;
+            continue;
+          }
+        }
+      }
+      if (kind == FS::CONTACT) {
+        sn = contact_normal(mat, eraw);
+        for (int c = 0; c < 3; c++) tau[c] = sf * xi[c];
+        const double tm = std::sqrt(tau[0] * tau[0] + tau[1] * tau[1] + tau[2] * tau[2]);
+        const double cs = coulomb_scale(mat, sn, tm);
+        if (cs < 1.0)
+          for (int c = 0; c < 3; c++) {
+            xi[c] *= cs;
+            tau[c] *= cs;
+          }
+        if (advance && welds(mat, sn)) {
+          kind = FS::WELD;
+          s[FS::S_KIND] = kind;
+          s[FS::S_PN] = weld_offset(mat, eraw, Xbar);
+          if (i_is_a) {
+            autom[i][FS::A_WF] += 1.0;
+            if (cross) autom[i][FS::A_CF] += 1.0;
+          }
+        }
+      }
+      const bool linked = (kind == FS::LINK || kind == FS::WELD);
+
+      // elastic force on a
+      double Fe[3], Fd[3] = {0.0, 0.0, 0.0}, Ma[3] = {0.0, 0.0, 0.0};
+      for (int c = 0; c < 3; c++) Fe[c] = A * (sn * n[c] + tau[c]);
+      if (!linked) {
+        const double cv = viscous_factor(mat, A, dbar);
+        for (int c = 0; c < 3; c++) Fd[c] = cv * vrel[c];
+      } else {
+        const double ma = rmass[a], mb = rmass[b];
+        const double meff = ma * mb / (ma + mb);
+        const double kl = mat.Kc * A / dbar;
+        const double cd = mat.damp * 2.0 * std::sqrt(kl * meff);
+        for (int c = 0; c < 3; c++) Fd[c] = cd * vrel[c];
+        const double kr = rotational_stiffness(mat, A, dbar);
+        const double Ia = 0.4 * ma * ra * ra, Ib = 0.4 * mb * rb * rb;
+        const double cr = mat.damp * 2.0 * std::sqrt(kr * Ia * Ib / (Ia + Ib));
+        for (int c = 0; c < 3; c++)
+          Ma[c] = kr * s[FS::S_TH + c] + cr * (omega[b][c] - omega[a][c]);
+      }
+
+      // force and torque on i
+      const double si = i_is_a ? 1.0 : -1.0;    // F_b = -F_a
+      const double ni[3] = {si * n[0], si * n[1], si * n[2]};    // from i towards its partner
+      double Fi[3], Ft[3];
+      for (int c = 0; c < 3; c++) Fi[c] = si * (Fe[c] + Fd[c]);
+      const double Fin = Fi[0] * ni[0] + Fi[1] * ni[1] + Fi[2] * ni[2];
+      for (int c = 0; c < 3; c++) Ft[c] = Fi[c] - Fin * ni[c];
+      const double rci = radius[i];
+      f[i][0] += Fi[0];
+      f[i][1] += Fi[1];
+      f[i][2] += Fi[2];
+      torque[i][0] += rci * (ni[1] * Ft[2] - ni[2] * Ft[1]) + si * Ma[0];
+      torque[i][1] += rci * (ni[2] * Ft[0] - ni[0] * Ft[2]) + si * Ma[1];
+      torque[i][2] += rci * (ni[0] * Ft[1] - ni[1] * Ft[0]) + si * Ma[2];
+      if (evflag) ev_tally_xyz_full(i, 0.0, 0.0, Fi[0], Fi[1], Fi[2], -dx, -dy, -dz);
+
+      // Love-Weber sum of the elastic pair forces (contact point r_i n_i)
+      double Fei[3] = {si * Fe[0], si * Fe[1], si * Fe[2]};
+      double *acc = sacc[i];
+      acc[0] += rci * ni[0] * Fei[0];
+      acc[1] += rci * ni[1] * Fei[1];
+      acc[2] += rci * ni[2] * Fei[2];
+      acc[3] += 0.5 * rci * (ni[0] * Fei[1] + ni[1] * Fei[0]);
+      acc[4] += 0.5 * rci * (ni[0] * Fei[2] + ni[2] * Fei[0]);
+      acc[5] += 0.5 * rci * (ni[1] * Fei[2] + ni[2] * Fei[1]);
+      if (linked) {
+        acc[6] += 1.0;
+        if (cross) acc[7] += 1.0;
+      }
+      if (i_is_a) {
+        if (linked) {
+          tally_links += 1.0;
+          if (cross) tally_cross += 1.0;
+        } else
+          tally_contacts += 1.0;
+      }
+    }
+  }
+
+  double cf = 0.0, cb = 0.0, lb = 0.0, wf = 0.0;
+  for (int i = 0; i < nlocal; i++) {
+    automaton_update(i, advance);
+    cf += autom[i][FS::A_CF];
+    cb += autom[i][FS::A_CB];
+    lb += autom[i][FS::A_LB];
+    wf += autom[i][FS::A_WF];
+  }
+  if (init_links) fix->initialized = 1;
+  if (advance) fix->last_commit = (double) update->ntimestep;
+
+  pvector[0] = tally_links;
+  pvector[1] = tally_cross;
+  pvector[2] = cf;
+  pvector[3] = cb;
+  pvector[4] = lb;
+  pvector[5] = wf;
+  pvector[6] = tally_contacts;
+}
+
+/* ----------------------------------------------------------------------
+   Love-Weber stress of automaton i, its mean-stress term X and the radial
+   return (mca_law.h, rule 7).  2D is plane strain: sigma_zz follows from the
+   in-plane state, sigma_zz = alpha X - 2G eps_p_zz with X = in-plane mean -
+   G eps_p_zz (the combination for which the lattice reproduces plane-strain
+   Hooke's law with plastic strain).
+------------------------------------------------------------------------- */
+
+void PairMCA::automaton_update(int i, bool advance)
+{
+  double *am = fix->autom[i];
+  const int dim = mat.dim;
+  const double V = automaton_volume(2.0 * atom->radius[i], dim);
+  double sig[6];
+  for (int c = 0; c < 6; c++) sig[c] = sacc[i][c] / V;
+  double X;
+  if (dim == 2) {
+    sig[2] = sig[4] = sig[5] = 0.0;
+    X = 0.5 * (sig[0] + sig[1]) - mat.G * am[FS::A_EPT + 2];
+    sig[2] = mat.alpha * X - 2.0 * mat.G * am[FS::A_EPT + 2];
+  } else {
+    X = (sig[0] + sig[1] + sig[2]) / 3.0;
+  }
+  double dep[6];
+  const double dg = radial_return(mat, sig, am[FS::A_EEQ], dep);
+  if (advance) {
+    for (int c = 0; c < 6; c++) {
+      am[FS::A_DEP + c] = dep[c];
+      am[FS::A_EPT + c] += dep[c];
+    }
+    am[FS::A_EEQ] += dg;
+  }
+  am[FS::A_X] = X;
+  for (int c = 0; c < 6; c++) am[FS::A_SIG + c] = sig[c];
+  am[FS::A_NL] = sacc[i][6];
+  am[FS::A_NC] = sacc[i][7];
+  am[FS::A_SEQ] = von_mises(sig);
+  double *o = fix->out[i];
+  for (int c = 0; c < 6; c++) o[c] = sig[c];
+  o[6] = am[FS::A_EEQ];
+  o[7] = sacc[i][6];
+  o[8] = sacc[i][7];
+  o[9] = am[FS::A_SEQ];
+}
+
+/* ---------------------------------------------------------------------- */
+
+int PairMCA::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
+{
+  int m = 0;
+  for (int q = 0; q < n; q++) {
+    const double *am = fix->autom[list[q]];
+    buf[m++] = am[FS::A_X];
+    for (int c = 0; c < 6; c++) buf[m++] = am[FS::A_DEP + c];
+  }
+  return m;
+}
+
+void PairMCA::unpack_forward_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    double *am = fix->autom[i];
+    am[FS::A_X] = buf[m++];
+    for (int c = 0; c < 6; c++) am[FS::A_DEP + c] = buf[m++];
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairMCA::write_restart_settings(FILE *fp)
+{
+  fwrite(&link_init, sizeof(int), 1, fp);
+  fwrite(&link_tol, sizeof(double), 1, fp);
+  fwrite(&cutfac, sizeof(double), 1, fp);
+}
+
+void PairMCA::read_restart_settings(FILE *fp)
+{
+  if (comm->me == 0) {
+    utils::sfread(FLERR, &link_init, sizeof(int), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &link_tol, sizeof(double), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &cutfac, sizeof(double), 1, fp, nullptr, error);
+  }
+  MPI_Bcast(&link_init, 1, MPI_INT, 0, world);
+  MPI_Bcast(&link_tol, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&cutfac, 1, MPI_DOUBLE, 0, world);
+}
+
+void PairMCA::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  double v[10] = {mat.G, mat.nu, mat.sy, mat.s0, mat.H, mat.mu, mat.eta, mat.wfac, mat.wonset, mat.damp};
+  fwrite(v, sizeof(double), 10, fp);
+}
+
+void PairMCA::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  double v[10];
+  if (comm->me == 0) utils::sfread(FLERR, v, sizeof(double), 10, fp, nullptr, error);
+  MPI_Bcast(v, 10, MPI_DOUBLE, 0, world);
+  mat.G = v[0]; mat.nu = v[1]; mat.sy = v[2]; mat.s0 = v[3]; mat.H = v[4];
+  mat.mu = v[5]; mat.eta = v[6]; mat.wfac = v[7]; mat.wonset = v[8]; mat.damp = v[9];
+  mat.dim = domain->dimension;
+  mat.derive();
+  const int n = atom->ntypes;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) setflag[i][j] = 1;
+  coeffset = 1;
+}
+
+double PairMCA::memory_usage()
+{
+  return (double) maxflat * sizeof(int) + (double) maxsacc * 8 * sizeof(double);
+}

@@ -1,0 +1,77 @@
+/* -*- c++ -*- ---------------------------------------------------------
+   tribolmp MCA plugin: pair style mca
+
+   Movable cellular automata (Psakhie, Popov et al.): a many-body elastic
+   law (pair responses plus the automaton's mean stress, so that E and nu are
+   independent), von Mises plasticity per automaton with radial return and
+   isotropic hardening, links that break in tension/shear, unlinked contacts
+   with repulsion, Coulomb friction and viscosity that weld when pressed,
+   and rotational resistance of links.  The rules are in mca_law.h.
+
+   Syntax:
+     pair_style mca [link_init same|all|none] [link_tol X]
+     pair_coeff * * G nu sigma_y sigma_0 H mu eta weld_factor weld_onset damp
+------------------------------------------------------------------------- */
+
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(mca,PairMCA);
+// clang-format on
+#else
+
+#ifndef TRIBOLMP_PAIR_MCA_H
+#define TRIBOLMP_PAIR_MCA_H
+
+#include "mca_law.h"
+#include "pair.h"
+
+namespace LAMMPS_NS {
+
+class PairMCA : public Pair {
+ public:
+  PairMCA(class LAMMPS *);
+  ~PairMCA() override;
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  double memory_usage() override;
+
+  enum { NTALLY = 7 };
+
+ protected:
+  MCALaw::Material mat;
+  int link_init;        // 0 none, 1 same molecule, 2 all
+  double link_tol;      // initial links: r < (1 + link_tol) dbar
+  double cutfac;        // neighbour cutoff / (2 max radius)
+  double maxrad;
+  class FixMCAState *fix;
+  int **cache;          // unused (kept for layout clarity)
+  int *ncache;
+  int maxcache_atoms;
+  int *cacheflat;       // slot index of each neighbour of each local atom (-1: none)
+  bigint *cacheoff;     // offset of atom i's neighbours in cacheflat
+  bigint maxflat;
+  double **sacc;        // Love-Weber sums and link counts of local atoms
+  int maxsacc;
+  int coeffset;
+
+  void allocate();
+  void ensure_fix();
+  void rebuild_cache();
+  int find_slot(int i, double jtag);
+  int new_slot(int i, double jtag);
+  void automaton_update(int i, bool advance);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif
