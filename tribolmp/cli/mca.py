@@ -2,6 +2,12 @@
 
 ``tribolmp mca run [SCENE.toml] [--dim 2|3] [--velocity V] [--pressure P]
 [--time T] [--preset smoke|default|paper] [--np N] [--out DIR] [--resume] [--json]``
+
+``tribolmp mca material-test --law LAW --test uniaxial|shear [--dim 2|3] [--pressure P]
+[--mode tension|compression] [--nu NU] [--json]``
+
+``tribolmp mca plugin-path [--rebuild]``: build (cached) and print the MCA plugin's path, for
+standalone decks: ``lmp -in deck.in -var plugin $(tribolmp mca plugin-path)``.
 """
 
 from __future__ import annotations
@@ -58,8 +64,60 @@ def configure(parser: argparse.ArgumentParser) -> None:
     )
     r.add_argument("--json", action="store_true", help="print the result as JSON")
 
+    m = sub.add_parser(
+        "material-test",
+        help="measure E, nu, yield, ultimate and shear yield of an interaction law",
+        description="Material test of an MCA interaction law on a periodic lattice block.",
+    )
+    m.add_argument("--law", default="mca", choices=("mca", "bpm/spring/plastic", "bpm/rotational"))
+    m.add_argument("--test", default="uniaxial", choices=("uniaxial", "shear", "hydro"))
+    m.add_argument("--dim", type=int, default=2, choices=(2, 3), help="spatial dimension")
+    m.add_argument("--pressure", type=float, default=0.0, help="superimposed pressure (Pa)")
+    m.add_argument("--mode", default="tension", choices=("tension", "compression"))
+    m.add_argument("--nu", type=float, help="Poisson ratio (default 0.3)")
+    m.add_argument("--json", action="store_true", help="print the result as JSON")
+
+    pp = sub.add_parser(
+        "plugin-path",
+        help="build (cached) and print the path of the MCA LAMMPS plugin",
+        description="Build the MCA plugin if needed and print the path of its shared object.",
+    )
+    pp.add_argument("--rebuild", action="store_true", help="compile even if cached")
+
 
 def run(args: argparse.Namespace) -> int:
+    """Dispatch ``tribolmp mca SUBCOMMAND``; no physics here."""
+    if args.mca_command == "material-test":
+        return _material_test(args)
+    if args.mca_command == "plugin-path":
+        from ..lammps.plugin import plugin_path
+
+        print(plugin_path(rebuild=args.rebuild))
+        return 0
+    return _run(args)
+
+
+def _material_test(args: argparse.Namespace) -> int:
+    from ..lammps.law_mca import McaLaw
+    from ..lammps.material_test import JSON_FIELDS, run_material_test
+
+    params = McaLaw(dim=args.dim, **({"poisson_ratio": args.nu} if args.nu is not None else {}))
+    res = run_material_test(
+        args.law, args.test, args.dim, pressure=args.pressure, params=params, mode=args.mode
+    )
+    extra = ("test", "mode", "shear_modulus_Pa", "links_broken", "natoms", "plane_strain")
+    payload = {k: res.get(k) for k in (*JSON_FIELDS, *extra)}
+    if args.json:
+        from . import emit_json
+
+        emit_json(payload)
+    else:
+        for k, v in payload.items():
+            print(f"{k}: {v}")
+    return 0
+
+
+def _run(args: argparse.Namespace) -> int:
     """Compose scene -> params -> run_mca; no physics here."""
     from ..lammps.mca import params_from_scene, preset_params, run_mca
     from ..scene import default_scene, load_scene

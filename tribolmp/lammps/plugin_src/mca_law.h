@@ -121,12 +121,15 @@ inline bool link_breaks(double sig_n, double tau_mag, double strength)
 }
 
 // Rule 4 (welding).  An unlinked contact pressed with a compressive pair stress
-// of at least wonset becomes a weld link (strength wfac sigma_0).  The weld
-// keeps the contact's force: its plastic offset p_n is chosen so that
+// of at least wonset becomes a weld link (strength wfac sigma_0), provided the
+// weld would hold its current shear (rule 3 with the weld strength): a
+// junction cannot form while the surfaces slide past each other faster than it
+// can hold them (without this a sheared contact welds and breaks every step).
+// The weld keeps the contact's force: its plastic offset p_n is chosen so that
 //   2G (e_raw - p_n) + alpha Xbar = Kc e_raw.
-inline bool welds(const Material &m, double sig_n)
+inline bool welds(const Material &m, double sig_n, double tau_mag)
 {
-  return m.wfac > 0.0 && -sig_n >= m.wonset;
+  return m.wfac > 0.0 && -sig_n >= m.wonset && !link_breaks(sig_n, tau_mag, m.wfac * m.s0);
 }
 inline double weld_offset(const Material &m, double eraw, double Xbar)
 {

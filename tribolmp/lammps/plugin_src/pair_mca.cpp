@@ -53,7 +53,7 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   manybody_flag = 1;
   no_virial_fdotr_compute = 1;
   finitecutflag = 1;
-  comm_forward = 7;
+  comm_forward = 8;
   nextra = NTALLY;
   pvector = new double[NTALLY];
   for (int k = 0; k < NTALLY; k++) pvector[k] = 0.0;
@@ -391,7 +391,10 @@ void PairMCA::compute(int eflag, int vflag)
 
       const double A = pair_area(dbar, dim);
       const double sf = shear_factor(mat, dbar);
-      const double Xbar = 0.5 * (autom[a][FS::A_X] + autom[b][FS::A_X]);
+      // X of the previous step; a re-evaluation (run setup) uses the X the forces of the
+      // last committed step used, so it reproduces those forces exactly
+      const int ix = advance ? FS::A_X : FS::A_XU;
+      const double Xbar = 0.5 * (autom[a][ix] + autom[b][ix]);
       const bool cross = !same_body;
       double sn = 0.0, tau[3] = {0.0, 0.0, 0.0};
 
@@ -426,7 +429,8 @@ void PairMCA::compute(int eflag, int vflag)
             xi[c] *= cs;
             tau[c] *= cs;
           }
-        if (advance && welds(mat, sn)) {
+        const double tm2 = (cs < 1.0) ? tm * cs : tm;
+        if (advance && welds(mat, sn, tm2)) {
           kind = FS::WELD;
           s[FS::S_KIND] = kind;
           s[FS::S_PN] = weld_offset(mat, eraw, Xbar);
@@ -547,8 +551,9 @@ void PairMCA::automaton_update(int i, bool advance)
       am[FS::A_EPT + c] += dep[c];
     }
     am[FS::A_EEQ] += dg;
+    am[FS::A_XU] = am[FS::A_X];
+    am[FS::A_X] = X;
   }
-  am[FS::A_X] = X;
   for (int c = 0; c < 6; c++) am[FS::A_SIG + c] = sig[c];
   am[FS::A_NL] = sacc[i][6];
   am[FS::A_NC] = sacc[i][7];
@@ -569,6 +574,7 @@ int PairMCA::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, 
   for (int q = 0; q < n; q++) {
     const double *am = fix->autom[list[q]];
     buf[m++] = am[FS::A_X];
+    buf[m++] = am[FS::A_XU];
     for (int c = 0; c < 6; c++) buf[m++] = am[FS::A_DEP + c];
   }
   return m;
@@ -580,6 +586,7 @@ void PairMCA::unpack_forward_comm(int n, int first, double *buf)
   for (int i = first; i < first + n; i++) {
     double *am = fix->autom[i];
     am[FS::A_X] = buf[m++];
+    am[FS::A_XU] = buf[m++];
     for (int c = 0; c < 6; c++) am[FS::A_DEP + c] = buf[m++];
   }
 }
