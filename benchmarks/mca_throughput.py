@@ -1,4 +1,15 @@
-"""Throughput of the MCA friction deck: Python interface vs the ``lmp`` binary, 1 vs 2 MPI ranks.
+"""Throughput of the MCA interaction laws (mca vs bpm/spring/plastic), and of the friction deck's interfaces.
+
+Default (law comparison, issue 13): the same periodic lattice block (2D hexagonal and 3D FCC,
+d = 2.5 nm steel, thermal noise, sheared at a constant tilt velocity through yield) runs
+``lammps_inputs/mca_block.in`` with the ``mca`` plugin law and with today's
+``bpm/spring/plastic`` links (granular hooke contacts, unlimited ``fix bond/create``), each for a
+loop of >= 10 s of LAMMPS time (calibrated by a short first run), on 1 rank.  Automaton-steps per
+second come from LAMMPS's ``Loop time``; ``ratio`` is mca / bpm on the same system (goal >= 0.7).
+Each law runs at its own stable timestep (both 0.1 sqrt(m/k) of their stiffest spring), so the
+table also gives simulated ns per wall hour.
+
+``--interfaces`` (the former benchmark):
 
 For three system sizes (~2k, ~10k, ~40k automata, 2D, d = 2.5 nm, steel) the
 same deck ``lammps_inputs/mca_friction.in`` with the same data file and
@@ -21,7 +32,8 @@ throughput by up to ~2.5x (issue 7's feasibility numbers).
 
 The machine is shared: ``uptime``'s load average is recorded next to each row.
 
-Usage: ``python benchmarks/mca_throughput.py [--quick] [--out CSV]``.
+Usage: ``python benchmarks/mca_throughput.py [--quick] [--out CSV]`` (laws),
+``python benchmarks/mca_throughput.py --interfaces [--quick]``.
 """
 
 from __future__ import annotations
@@ -109,10 +121,84 @@ def _run(kind: str, variables: dict, out: Path) -> dict:
     }
 
 
+#: (dim, lattice repeats) of the law comparison: ~1600 (2D) and ~2000 (3D) automata
+LAW_SYSTEMS = ((2, 40), (3, 8))
+LAW_SYSTEMS_QUICK = ((2, 16), (3, 4))
+
+
+def _block_worker(out: str) -> int:
+    from tribolmp.lammps.decks import deck_path
+    from tribolmp.lammps.session import LammpsSession
+
+    variables = json.loads((Path(out) / "vars.json").read_text())
+    with LammpsSession(log=None, variables=variables, require=()) as lmp:
+        lmp.file(deck_path("mca_block"))
+    return 0
+
+
+def _block_run(variables: dict, out: Path, steps: int) -> dict:
+    v = dict(variables, out=str(out), steps=str(steps), print_every=str(max(1, steps // 10)))
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "vars.json").write_text(json.dumps(v))
+    load = _load()
+    cmd = [sys.executable, __file__, "--block-worker", str(out)]
+    proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    if proc.returncode != 0:
+        raise RuntimeError(f"block run failed: {(proc.stderr or proc.stdout)[-800:]}")
+    t, procs, nsteps, atoms = _loop(out / "block.log")
+    return {"loop_s": t, "steps": nsteps, "atoms": atoms, "rate": atoms * nsteps / t, "load": load}
+
+
+def laws_main(quick: bool, csv_path: Path, loop_s: float) -> int:
+    """Mca vs bpm/spring/plastic on the same 2D and 3D blocks; print and write the CSV."""
+    from tribolmp.lammps.material_test import block_setup
+
+    rows = []
+    print(f"{'dim':>3} {'law':>18} {'automata':>8} {'steps':>7} {'loop_s':>7} "
+          f"{'automaton-steps/s':>17} {'dt_ns':>9} {'ns/h':>7} {'ratio':>6} {'load':>5}")
+    with tempfile.TemporaryDirectory(prefix="mca_laws_") as tmp:
+        for dim, n in (LAW_SYSTEMS_QUICK if quick else LAW_SYSTEMS):
+            res = {}
+            for law in ("bpm/spring/plastic", "mca"):
+                out = Path(tmp) / f"{dim}d_{law.replace('/', '_')}"
+                v = {k: str(x) for k, x in block_setup(law, dim, out, n=n).items()}
+                v.update(drive="deform", vshear="5.0")
+                cal = _block_run(v, out / "cal", 200 if quick else 500)
+                steps = max(200, int(loop_s * cal["rate"] / cal["atoms"]))
+                r = _block_run(v, out / "run", steps)
+                r["dt_ns"] = float(v["dt"])
+                res[law] = r
+            for law, r in res.items():
+                ratio = r["rate"] / res["bpm/spring/plastic"]["rate"]
+                ns_h = r["rate"] / r["atoms"] * r["dt_ns"] * 3600.0
+                row = {
+                    "dim": dim,
+                    "law": law,
+                    "automata": r["atoms"],
+                    "steps": r["steps"],
+                    "loop_s": r["loop_s"],
+                    "automaton_steps_per_s": r["rate"],
+                    "dt_ns": r["dt_ns"],
+                    "simulated_ns_per_hour": ns_h,
+                    "ratio_vs_bpm": ratio,
+                    "load_avg_1min": r["load"],
+                }
+                rows.append(row)
+                print(f"{dim:>3} {law:>18} {r['atoms']:>8} {r['steps']:>7} {r['loop_s']:>7.1f} "
+                      f"{r['rate']:>17.4g} {r['dt_ns']:>9.3g} {ns_h:>7.3g} {ratio:>6.2f} "
+                      f"{r['load']:>5.1f}")
+    write_csv(csv_path, rows)
+    print(f"wrote {csv_path}")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the benchmark; print the table and write the CSV."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="two small sizes, few steps")
+    ap.add_argument("--quick", action="store_true", help="small systems, short loops")
+    ap.add_argument("--interfaces", action="store_true", help="Python vs lmp vs 2 ranks (friction deck)")
+    ap.add_argument("--loop", type=float, default=12.0, help="target loop time per law run (s)")
+    ap.add_argument("--block-worker", default=None, help=argparse.SUPPRESS)
     ap.add_argument(
         "--out",
         default=None,
@@ -122,6 +208,12 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     if args.worker:
         return _worker(args.worker)
+    if args.block_worker:
+        return _block_worker(args.block_worker)
+    if not args.interfaces:
+        name = f"mca_throughput_laws{'_quick' if args.quick else ''}.csv"
+        csv_path = Path(args.out) if args.out else Path(__file__).parent / "results" / name
+        return laws_main(args.quick, csv_path, 2.0 if args.quick else args.loop)
 
     from tribolmp.lammps import mca
 

@@ -57,7 +57,7 @@ def test_automaton_stress_equals_the_virial_stress(lammps_available):
     r = run_material_test("mca", "uniaxial", 3, strain=0.8 * 480e6 / E)
     s, sa = r["stress_Pa"], r["stress_automaton_Pa"]
     k = s > 100e6
-    # identical up to the geometric difference r/2 vs r_i in the branch vector: 0.1 % at 0.2 % strain
+    # identical up to the geometric difference r/2 vs r_i in the branch vector (0.1 % at 0.2 %)
     assert np.allclose(sa[k], s[k], rtol=2e-3)
 
 
@@ -139,7 +139,7 @@ def test_shear_yield_does_not_depend_on_pressure(lammps_available, dim, pressure
 
 
 def test_contrast_bpm_spring_plastic_yield_depends_on_pressure(lammps_available):
-    """Documented contrast (issue 13): the per-link plastic spring yields at ~0.6 P under pressure."""
+    """Documented contrast (issue 13): the per-link plastic spring yields at ~0.6 P."""
     t0 = run_material_test("bpm/spring/plastic", "shear", 2, pressure=0.0)["shear_yield_stress_Pa"]
     t382 = run_material_test("bpm/spring/plastic", "shear", 2, pressure=382e6)[
         "shear_yield_stress_Pa"

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from tribolmp.lammps.law_mca import McaLaw, mca_deck_variables, pair_area
 from tribolmp.lammps.decks import deck_path
+from tribolmp.lammps.law_mca import McaLaw, mca_deck_variables, pair_area
 from tribolmp.units import to_lammps
 
 pytestmark = pytest.mark.lammps

@@ -52,7 +52,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
         "--preset", choices=("smoke", "default", "paper"), help="size/time preset (default: smoke)"
     )
     r.add_argument(
-        "--bond-style", choices=("bpm/spring/plastic", "bpm/rotational"), help="link model"
+        "--bond-style",
+        choices=("mca", "bpm/spring/plastic", "bpm/rotational"),
+        help="interaction law (default: the scene's)",
     )
     r.add_argument(
         "--np", type=int, default=1, help="MPI ranks (runs under the mpich wheel's mpiexec)"

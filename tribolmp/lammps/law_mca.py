@@ -23,7 +23,11 @@ from ..models.base import check_range
 from ..units import to_lammps
 
 __all__ = [
+    "McaCoefficients",
     "McaLaw",
+    "law_from_spec",
+    "map_spec",
+    "validate_spec",
     "automaton_volume",
     "pair_area",
     "mca_deck_variables",
@@ -182,7 +186,7 @@ class McaLaw:
         return math.sqrt(self.mass / k)
 
     def replace(self, **changes) -> McaLaw:
-        """A copy with some fields changed (validated again)."""
+        """Return a copy with some fields changed (validated again)."""
         return replace(self, **changes)
 
     def as_dict(self) -> dict:
@@ -190,8 +194,11 @@ class McaLaw:
         return asdict(self)
 
 
+_COEFF_ORDER = ("G", "nu", "sy", "s0", "H", "mu", "eta", "wfac", "wonset", "damp")
+
+
 def mca_deck_variables(law: McaLaw) -> dict[str, str]:
-    """Deck variables of ``pair_coeff * * G nu sigma_y sigma_0 H mu eta weld_factor weld_onset damp``.
+    """Return the deck variables of ``pair_coeff * * G nu sy s0 H mu eta wfac wonset damp``.
 
     All converted to LAMMPS ``units nano`` (pressure 1e6 Pa, viscosity 1e-3 Pa s).
     """
@@ -211,7 +218,7 @@ def mca_deck_variables(law: McaLaw) -> dict[str, str]:
 
 
 def mca_pair_commands(law: McaLaw, plugin: str | None = None) -> list[str]:
-    """The deck fragment that selects the MCA law (after ``read_data``).
+    """Return the deck fragment that selects the MCA law (after ``read_data``).
 
     Parameters
     ----------
@@ -230,7 +237,111 @@ def mca_pair_commands(law: McaLaw, plugin: str | None = None) -> list[str]:
     lines = [f"plugin load {plugin}"] if plugin else []
     lines += [
         "pair_style mca",
-        "pair_coeff * * "
-        + " ".join(v[k] for k in ("G", "nu", "sy", "s0", "H", "mu", "eta", "wfac", "wonset", "damp")),
+        "pair_coeff * * " + " ".join(v[k] for k in _COEFF_ORDER),
     ]
     return lines
+
+
+# ---------------------------------------------------------------- registry hooks (laws.py)
+
+
+def law_from_spec(spec) -> McaLaw:
+    """Return the :class:`McaLaw` of a :class:`~tribolmp.lammps.mapping.MaterialSpec` (SI)."""
+    return McaLaw(
+        youngs_modulus=spec.youngs_modulus,
+        poisson_ratio=spec.poisson_ratio,
+        yield_strength=spec.yield_strength,
+        ultimate_strength=spec.ultimate_strength,
+        contact_friction=min(spec.contact_friction, 10.0),
+        link_damping=spec.damping_ratio,
+        diameter=spec.diameter,
+        density=spec.density,
+        dim=spec.dim,
+    )
+
+
+def validate_spec(spec) -> None:
+    """Raise a one-line ``ParameterError`` for a material the MCA law cannot represent."""
+    law_from_spec(spec)
+
+
+@dataclass(frozen=True)
+class McaCoefficients:
+    """What the MCA decks need from the mapping (LAMMPS ``units nano`` unless noted).
+
+    Attributes
+    ----------
+    law : McaLaw
+        The SI parameters.
+    mass : float
+        Automaton mass (ag) = density x lattice volume per automaton.
+    contact_diameter : float
+        Diameter written to the data file (nm): the lattice spacing d (links
+        start stress-free at d; unlinked automata touch at d).
+    density_column : float
+        Data-file density (ag/nm^3) giving ``mass`` (LAMMPS: density pi D^3 / 6).
+    dt_unit : float
+        sqrt(m / k) of the stiffest pair spring k = Kc A / d (ns).
+    dt_max_factor : float
+        Verlet stability limit in units of dt_unit: 2 / sqrt(2 Z) (Gershgorin
+        bound of the dynamical matrix, Z = 6 / 12 neighbours; the rotational
+        modes stay below it since the shear stiffness 2G < Kc).
+    flow_stress : float
+        Normal pressure (Pa) at which a laterally confined slab yields:
+        sigma_y (1 - nu) / (1 - 2 nu) (uniaxial strain).
+    k_contact, gamma_contact, mu_contact : float
+        Contact stiffness Kc A / d, its critical damping x link_damping, and
+        the friction coefficient (for drivers that report them).
+    """
+
+    law: McaLaw
+    mass: float
+    contact_diameter: float
+    density_column: float
+    dt_unit: float
+    dt_max_factor: float
+    flow_stress: float
+    k_contact: float
+    gamma_contact: float
+    mu_contact: float
+
+    def as_dict(self) -> dict:
+        """Plain dict (SI law parameters + nano coefficients) for meta.json."""
+        out = asdict(self)
+        out["law"] = self.law.as_dict()
+        return out
+
+
+def map_spec(spec) -> McaCoefficients:
+    """Map a :class:`~tribolmp.lammps.mapping.MaterialSpec` onto the MCA law (SI -> nano)."""
+    law = law_from_spec(spec)
+    d = to_lammps(law.diameter, "length")
+    mass = to_lammps(law.mass, "mass")
+    area = pair_area(d, law.dim)
+    k = to_lammps(law.contact_modulus, "pressure") * area / d
+    z = 6 if law.dim == 2 else 12
+    nu = law.poisson_ratio
+    return McaCoefficients(
+        law=law,
+        mass=mass,
+        contact_diameter=d,
+        density_column=mass / (math.pi * d**3 / 6.0),
+        dt_unit=math.sqrt(mass / k),
+        dt_max_factor=2.0 / math.sqrt(2.0 * z),
+        flow_stress=law.yield_strength * (1.0 - nu) / (1.0 - 2.0 * nu),
+        k_contact=k,
+        gamma_contact=law.link_damping * 2.0 * math.sqrt(k * 0.5 * mass),
+        mu_contact=law.contact_friction,
+    )
+
+
+def registry_deck_variables(c: McaCoefficients) -> dict[str, str]:
+    """Deck variables of the ``mca`` fragment (``lammps_inputs/laws/mca.in``)."""
+    return mca_deck_variables(c.law)
+
+
+def registry_setup() -> dict[str, str]:
+    """Build (or find) the plugin before LAMMPS starts; the fragment loads ``${mca_plugin}``."""
+    from .plugin import plugin_path
+
+    return {"mca_plugin": str(plugin_path())}

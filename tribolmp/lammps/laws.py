@@ -136,6 +136,30 @@ class BondLaw:
 
 _COMMON_STYLES = (("atom", "bpm/sphere"), ("fix", "nve/bpm/sphere"))
 
+
+def _mca_map(spec):
+    from .law_mca import map_spec
+
+    return map_spec(spec)
+
+
+def _mca_variables(coeff) -> dict[str, str]:
+    from .law_mca import registry_deck_variables
+
+    return registry_deck_variables(coeff)
+
+
+def _mca_validate(spec) -> None:
+    from .law_mca import validate_spec
+
+    validate_spec(spec)
+
+
+def _mca_setup() -> dict[str, str]:
+    from .law_mca import registry_setup
+
+    return registry_setup()
+
 BOND_LAWS: Mapping[str, BondLaw] = MappingProxyType(
     {
         "bpm/spring/plastic": BondLaw(
@@ -158,10 +182,26 @@ BOND_LAWS: Mapping[str, BondLaw] = MappingProxyType(
             validate=_bpm_rotational_validate,
             doc="normal/shear/bending springs (LAMMPS BPM), brittle, nu < 1/3",
         ),
+        # movable cellular automata (tribolmp plugin, C++): the pair style, its state fix and
+        # per-atom compute come from the plugin the fragment loads (``setup`` builds it), so
+        # they are checked by the fragment's ``plugin load``, not before the deck runs
+        "mca": BondLaw(
+            name="mca",
+            keyword="mca",
+            styles=_COMMON_STYLES,
+            map_material=_mca_map,
+            deck_variables=_mca_variables,
+            validate=_mca_validate,
+            setup=_mca_setup,
+            coordination_cap=False,
+            doc="movable cellular automata: many-body elasticity, von Mises plasticity, "
+            "fracture and welding (tribolmp plugin pair_style mca)",
+        ),
     }
 )
 
-#: The law used when none is named (``mca`` once it passes its tests).
+#: The law used when none is named (the scene default; ``mca`` once the driver tests are
+#: recalibrated for it, see CONTRACTS.md C2/C7).
 DEFAULT_LAW = "bpm/spring/plastic"
 
 

@@ -173,7 +173,7 @@ def j2_reference(
 
 
 def offset_yield(strain: np.ndarray, stress: np.ndarray, modulus: float, offset: float = OFFSET):
-    """Index of the first point below the ``offset`` line ``modulus (strain - offset)``; None if never."""
+    """Return the first index below the line ``modulus (strain - offset)`` (None if never)."""
     below = stress < modulus * (strain - offset)
     return int(np.argmax(below)) if below.any() else None
 
@@ -290,7 +290,8 @@ def _run_deck(law, test, dim, pressure, p: McaLaw, mode, strain, out: Path, n):
 
         spec = MaterialSpec(
             youngs_modulus=p.youngs_modulus,
-            poisson_ratio=min(p.poisson_ratio, 0.33) if law == "bpm/rotational" else p.poisson_ratio,
+            poisson_ratio=min(p.poisson_ratio, 0.33) if law == "bpm/rotational"
+            else p.poisson_ratio,
             yield_strength=p.yield_strength,
             ultimate_strength=p.ultimate_strength,
             diameter=p.diameter,
@@ -446,7 +447,7 @@ def block_setup(
     n: int = 12,
     params: McaLaw | None = None,
 ) -> dict:
-    """Data file and deck variables of ``lammps_inputs/mca_block.in`` for one law.
+    """Write the data file and return the deck variables of ``mca_block.in`` for one law.
 
     The same lattice block (``n`` repeats per side, periodic) for the ``mca``
     law (no bonds: links are per-pair state) and for ``bpm/spring/plastic``
@@ -475,7 +476,8 @@ def block_setup(
             out / "block.data", geom, density=mass / (math.pi * d**3 / 6.0), diameter=d
         )
         v.update(mca_deck_variables(p))
-        v.update(law="mca", plugin=plugin_path(), dt=f"{0.1 * to_lammps(p.timestep_unit(), 'time'):.10g}")
+        dt = 0.1 * to_lammps(p.timestep_unit(), "time")
+        v.update(law="mca", plugin=plugin_path(), dt=f"{dt:.10g}")
     else:
         from .mapping import MaterialSpec, link_deck_variables, map_material
 

@@ -46,7 +46,7 @@ __all__ = [
 #: Source folder shipped as package data.
 SOURCE_DIR = Path(__file__).resolve().parent / "plugin_src"
 #: (category, style) pairs the plugin provides.
-PLUGIN_STYLES = (("pair", "mca"), ("fix", "mca/state"))
+PLUGIN_STYLES = (("pair", "mca"), ("fix", "mca/state"), ("compute", "mca/atom"))
 _SO_NAME = "mcaplugin.so"
 _CXXFLAGS = ("-std=c++17", "-O2", "-fPIC", "-shared")
 
@@ -90,7 +90,7 @@ def _mpi_include() -> Path | None:
 
 
 def _pc_cflags(lmpdir: Path) -> list[str]:
-    """The ``-D`` flags LAMMPS was built with (from its pkg-config file)."""
+    """Return the ``-D`` flags LAMMPS was built with (from its pkg-config file)."""
     pc = lmpdir / "pkgconfig" / "liblammps.pc"
     flags: list[str] = []
     if pc.is_file():

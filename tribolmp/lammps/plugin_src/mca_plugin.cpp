@@ -7,6 +7,7 @@
    signatures), handle.
 ------------------------------------------------------------------------- */
 
+#include "compute_mca_atom.h"
 #include "fix_mca_state.h"
 #include "lammps.h"
 #include "pair_mca.h"
@@ -37,6 +38,11 @@ static Pair *pair_mca_creator(LAMMPS *lmp)
   return new PairMCA(lmp);
 }
 
+static Compute *compute_mca_atom_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new ComputeMCAAtom(lmp, argc, argv);
+}
+
 static Fix *fix_mca_state_creator(LAMMPS *lmp, int argc, char **argv)
 {
   return new FixMCAState(lmp, argc, argv);
@@ -61,5 +67,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "mca/state";
   plugin.info = "per-automaton and per-link state of pair mca (tribolmp)";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_mca_state_creator;
+  (*reg)(&plugin, lmp);
+
+  plugin.style = "compute";
+  plugin.name = "mca/atom";
+  plugin.info = "one column of fix mca/state as a per-atom vector (tribolmp)";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &compute_mca_atom_creator;
   (*reg)(&plugin, lmp);
 }

@@ -44,7 +44,7 @@ using namespace MCALaw;
 using FS = FixMCAState;
 
 PairMCA::PairMCA(LAMMPS *lmp) :
-    Pair(lmp), link_init(1), link_tol(0.05), cutfac(1.25), maxrad(0.0), fix(nullptr),
+    Pair(lmp), link_init(1), attach_type(0), link_tol(0.05), cutfac(1.25), maxrad(0.0), fix(nullptr),
     cache(nullptr), ncache(nullptr), maxcache_atoms(0), coeffset(0)
 {
   single_enable = 0;
@@ -95,7 +95,10 @@ void PairMCA::settings(int narg, char **arg)
       if (strcmp(arg[iarg + 1], "none") == 0) link_init = 0;
       else if (strcmp(arg[iarg + 1], "same") == 0) link_init = 1;
       else if (strcmp(arg[iarg + 1], "all") == 0) link_init = 2;
-      else error->all(FLERR, "pair_style mca: link_init: expected none|same|all, got {}", arg[iarg + 1]);
+      else if (strcmp(arg[iarg + 1], "bonds") == 0) link_init = 3;
+      else error->all(FLERR, "pair_style mca: link_init: expected none|same|all|bonds, got {}", arg[iarg + 1]);
+    } else if (strcmp(arg[iarg], "attach_type") == 0) {
+      attach_type = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
     } else if (strcmp(arg[iarg], "link_tol") == 0) {
       link_tol = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (link_tol < 0.0 || link_tol > 0.2)
@@ -166,6 +169,9 @@ void PairMCA::init_style()
   if (comm->ghost_velocity == 0)
     error->all(FLERR, "pair mca: needs ghost velocities: add 'comm_modify vel yes'");
   if (!coeffset) error->all(FLERR, "pair mca: pair_coeff * * ... not set");
+  if (link_init == 3 && (!atom->molecular || force->newton_bond))
+    error->all(FLERR, "pair mca: link_init bonds needs a molecular atom style and 'newton on off' "
+               "(every atom must hold its own bonds)");
   mat.dim = domain->dimension;
   mat.derive();
   neighbor->add_request(this, NeighConst::REQ_FULL);
@@ -209,6 +215,23 @@ int PairMCA::new_slot(int i, double jtag)
              "declare 'fix mca_state all mca/state maxpartner N' with a larger N",
              atom->tag[i], fix->maxpartner);
   return -1;
+}
+
+/* kind of the initial link between local atom i and partner jtag (FREE: none).
+   same/all: every pair closer than (1 + link_tol) dbar (same: of the same molecule);
+   bonds: the pairs the data file bonds, bond type attach_type as an unbreakable attachment */
+
+int PairMCA::initial_link_kind(int i, tagint jtag, double rsq, double dbar, bool same_body)
+{
+  if (link_init == 3) {
+    for (int m = 0; m < atom->num_bond[i]; m++)
+      if (atom->bond_atom[i][m] == jtag)
+        return (atom->bond_type[i][m] == attach_type) ? FS::ATTACH : FS::LINK;
+    return FS::FREE;
+  }
+  const double lim = (1.0 + link_tol) * dbar;
+  if (rsq < lim * lim && (link_init == 2 || same_body)) return FS::LINK;
+  return FS::FREE;
 }
 
 void PairMCA::rebuild_cache()
@@ -314,14 +337,14 @@ void PairMCA::compute(int eflag, int vflag)
       int k = cache_i[jj];
       const bool same_body = !mol || mol[i] == mol[j];
       if (k < 0) {
-        const bool mklink = init_links && rsq < (1.0 + link_tol) * (1.0 + link_tol) * dbar * dbar &&
-            (link_init == 2 || same_body);
+        const int ikind = init_links ? initial_link_kind(i, tag[j], rsq, dbar, same_body) : FS::FREE;
+        const bool mklink = ikind != FS::FREE;
         if (rsq >= dbar * dbar && !mklink) continue;
         k = new_slot(i, jtag);
         cache_i[jj] = k;
         double *s = fix->slot(i, k);
         const double sg = (itag < jtag) ? 1.0 : -1.0;
-        s[FS::S_KIND] = mklink ? FS::LINK : FS::CONTACT;
+        s[FS::S_KIND] = mklink ? ikind : FS::CONTACT;
         s[FS::S_RP + 0] = sg * dx;
         s[FS::S_RP + 1] = sg * dy;
         s[FS::S_RP + 2] = sg * dz;
@@ -373,7 +396,7 @@ void PairMCA::compute(int eflag, int vflag)
           xi[c] += du[c] - dun * n[c];
           s[FS::S_RP + c] = R[c];
         }
-        if (kind == FS::LINK || kind == FS::WELD) {
+        if (kind == FS::LINK || kind == FS::WELD || kind == FS::ATTACH) {
           // plastic offsets: the pending plastic strain increments of a and b
           // (mean of the two halves of the pair) leave the elastic pair strain
           const double *pa = &autom[a][FS::A_DEP], *pb = &autom[b][FS::A_DEP];
@@ -398,12 +421,12 @@ void PairMCA::compute(int eflag, int vflag)
       const bool cross = !same_body;
       double sn = 0.0, tau[3] = {0.0, 0.0, 0.0};
 
-      if (kind == FS::LINK || kind == FS::WELD) {
+      if (kind == FS::LINK || kind == FS::WELD || kind == FS::ATTACH) {
         sn = link_normal(mat, eraw - s[FS::S_PN], Xbar);
         for (int c = 0; c < 3; c++) tau[c] = sf * xi[c];
         const double tm = std::sqrt(tau[0] * tau[0] + tau[1] * tau[1] + tau[2] * tau[2]);
         const double strength = (kind == FS::LINK) ? mat.s0 : mat.wfac * mat.s0;
-        if (advance && link_breaks(sn, tm, strength)) {
+        if (advance && kind != FS::ATTACH && link_breaks(sn, tm, strength)) {
           if (i_is_a) {
             autom[i][FS::A_LB] += 1.0;
             if (cross) autom[i][FS::A_CB] += 1.0;
@@ -440,7 +463,8 @@ void PairMCA::compute(int eflag, int vflag)
           }
         }
       }
-      const bool linked = (kind == FS::LINK || kind == FS::WELD);
+      const bool attached = (kind == FS::ATTACH);
+      const bool linked = (kind == FS::LINK || kind == FS::WELD || attached);
 
       // elastic force on a
       double Fe[3], Fd[3] = {0.0, 0.0, 0.0}, Ma[3] = {0.0, 0.0, 0.0};
@@ -486,11 +510,12 @@ void PairMCA::compute(int eflag, int vflag)
       acc[3] += 0.5 * rci * (ni[0] * Fei[1] + ni[1] * Fei[0]);
       acc[4] += 0.5 * rci * (ni[0] * Fei[2] + ni[2] * Fei[0]);
       acc[5] += 0.5 * rci * (ni[1] * Fei[2] + ni[2] * Fei[1]);
-      if (linked) {
+      // attachments (to rigid layers) are not links of the material: not counted
+      if (linked && !attached) {
         acc[6] += 1.0;
         if (cross) acc[7] += 1.0;
       }
-      if (i_is_a) {
+      if (i_is_a && !attached) {
         if (linked) {
           tally_links += 1.0;
           if (cross) tally_cross += 1.0;

@@ -9,7 +9,7 @@
    and rotational resistance of links.  The rules are in mca_law.h.
 
    Syntax:
-     pair_style mca [link_init same|all|none] [link_tol X]
+     pair_style mca [link_init same|all|none|bonds] [link_tol X] [attach_type N] [cutoff F]
      pair_coeff * * G nu sigma_y sigma_0 H mu eta weld_factor weld_onset damp
 ------------------------------------------------------------------------- */
 
@@ -48,7 +48,8 @@ class PairMCA : public Pair {
 
  protected:
   MCALaw::Material mat;
-  int link_init;        // 0 none, 1 same molecule, 2 all
+  int link_init;        // 0 none, 1 same molecule, 2 all, 3 the data file's bonds
+  int attach_type;      // bond type that becomes an unbreakable attachment (link_init bonds)
   double link_tol;      // initial links: r < (1 + link_tol) dbar
   double cutfac;        // neighbour cutoff / (2 max radius)
   double maxrad;
@@ -68,6 +69,7 @@ class PairMCA : public Pair {
   void rebuild_cache();
   int find_slot(int i, double jtag);
   int new_slot(int i, double jtag);
+  int initial_link_kind(int i, tagint jtag, double rsq, double dbar, bool same_body);
   void automaton_update(int i, bool advance);
 };
 
