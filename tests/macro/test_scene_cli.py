@@ -110,3 +110,12 @@ def test_rough_profile_without_rng_is_an_error_not_a_sphere():
     a = macro.contact_from_scene(scene, rng=np.random.default_rng(scene.scene.seed), n_springs=256)
     b = macro.contact_from_scene(scene, rng=np.random.default_rng(scene.scene.seed), n_springs=256)
     assert np.array_equal(a.g, b.g) and np.count_nonzero(np.diff(np.sign(np.diff(a.g))) > 0) > 3
+
+
+def test_tribospec_on_a_rough_scene_states_the_sphere_tip(capsys):
+    # the probe-tip sphere used for a rough scene's stiffness model is stated, not silent
+    res = run_main(capsys, "tribospec", "simulate", "--model", "stiffness", "--amplitudes", "0,1e-7", "--json")
+    assert res.returncode == 0
+    out = json.loads(res.stdout)
+    assert len(out["warnings"]) == 1 and "sphere" in out["warnings"][0]
+    assert res.stderr.count("\n") == 1 and "warning" in res.stderr

@@ -96,6 +96,15 @@ def _simulate(args) -> int:
     for key in ("contact_stiffness_N_m", "shakedown_limit_m", "force0_N"):
         if key in res:
             out[key] = res[key]
+    warnings = []
+    if scene.geometry.profile == "rough" and args.contact_stiffness is None and res.model == "stiffness":
+        # stated, not silent: the probe tip contact is the sphere of [geometry].radius here
+        warnings.append("[geometry].profile = 'rough': the contact stiffness is that of the probe tip, the sphere "
+                        "of [geometry].radius; pass --contact-stiffness for the rough contact's stiffness")
+        import sys
+
+        print(f"tribolmp tribospec: warning: {warnings[-1]}", file=sys.stderr)
+    out["warnings"] = warnings
     if args.json:
         from . import emit_json
 
