@@ -38,8 +38,9 @@ def test_default_scene_plan():
     assert plan["contact"].needs == ("topography",)
     assert "dry" in plan["lubrication"].reason
     # Tribospectroscopy models the probe's own tips; from the chain it takes only mu.
-    assert plan["tribospectroscopy"].needs == ("nanoscale",)
-    assert plan["macroscale"].needs == ("contact", "nanoscale")
+    # Issue 15: both also take the running-in hand-off of topography (mu_s, mu_k at the part; the length).
+    assert plan["tribospectroscopy"].needs == ("nanoscale", "topography")
+    assert plan["macroscale"].needs == ("contact", "nanoscale", "topography")
 
 
 def test_rates_given_scene_never_plans_lammps():

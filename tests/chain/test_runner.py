@@ -87,11 +87,15 @@ def test_changed_input_invalidates_only_downstream(tmp_path, calls):
     out = tmp_path / "run"
     scene = _scene()
     runner_mod.run_chain(scene, out, quiet=True, figures=False)
-    # [roughness] is read by contact only (macroscale depends on contact; topography and tribospectroscopy do not).
+    # [tribospectroscopy] is read by that stage only (issue 15: [roughness] is now the part's surface,
+    # which the running-in topography evolves, so it invalidates every stage).
+    changed = dataclasses.replace(scene, tribospectroscopy=dataclasses.replace(scene.tribospectroscopy, frequency=60e3))
+    runner_mod.run_chain(changed, out, quiet=True, figures=False)
+    assert calls["topography"] == 1 and calls["contact"] == 1 and calls["macroscale"] == 1
+    assert calls["tribospectroscopy"] == 2
     changed = dataclasses.replace(scene, roughness=dataclasses.replace(scene.roughness, realizations=scene.roughness.realizations + 1))
     runner_mod.run_chain(changed, out, quiet=True, figures=False)
-    assert calls["topography"] == 1 and calls["tribospectroscopy"] == 1
-    assert calls["contact"] == 2 and calls["macroscale"] == 2
+    assert calls["topography"] == 2 and calls["contact"] == 2 and calls["macroscale"] == 2
 
 
 def test_failing_stage_is_reported_and_others_kept(tmp_path, calls, monkeypatch):

@@ -24,35 +24,64 @@ from tribolmp.scene import default_scene, parse_scene
 
 RATES = {"diffusion_m2_s": 2e-12, "transfer_rate": 1e-3, "wear_rate": 0.5, "detachment_rate": 3.0,
          "reattachment_rate": 1.0, "step_length_m": 2.5e-9, "step_time_s": 1e-9, "mu": 0.3,
-         "units": {"diffusion_m2_s": "m^2/s"}}
+         "sliding_velocity_m_s": 5.0, "units": {"diffusion_m2_s": "m^2/s"}}
 
 
 def test_params_from_rates_mapping():
-    l, tau = 2.5e-9, 1e-9
-    p = params_from_rates(RATES, dim=1, n=64)
-    assert p.d0 == 2e-12 and p.mu == 0.5 and p.l == l and p.dx == l
-    assert p.dx_noise == pytest.approx(l**3 / (2 * tau), rel=1e-14)
-    assert p.dz == pytest.approx(l**3 * (3.0 + 1.0) / 2, rel=1e-14)
-    assert p.duration == pytest.approx(5 / 0.5)
-    p2 = params_from_rates(RATES, dim=2, n=16)
-    assert p2.dx_noise == pytest.approx(l**4 / (4 * tau), rel=1e-14)  # units m^4/s in 2D
-    # Without a measured D0: the random-walk value, and then the high-k plateau is l^(d+2).
-    q = params_from_rates({k: v for k, v in RATES.items() if k != "diffusion_m2_s"}, dim=2, n=16)
-    assert q.d0 == pytest.approx(l**2 / (4 * tau))
-    assert q.dx_noise * q.l**2 / q.d0 == pytest.approx(l**4, rel=1e-12)
-    # Transfer per sliding distance times velocity when no frequencies are given.
-    r = params_from_rates({"transfer_rate": 2e-3, "wear_rate": 0.0, "step_length_m": l, "step_time_s": tau},
-                          sliding_velocity=0.5, n=8, duration=1.0)
+    """The spectrum's plateaus and crossovers against the block picture and the measured coefficients.
+
+    Checked through the stationary spectrum of :mod:`spectra` (not the mapping's own formulas):
+    the high-k plateau of the legacy mapping must be one block's height at the block scale,
+    l^(d+2) (issue 15: it was l^(d+2)/(2d) because the analysis sets tau = l^2/D while the mapping
+    assumed D = l^2/(2 d tau)); the low-k plateau is l^3 nu_z / (2 mu) by the noise convention
+    <f f> = 2 Dz; with the C1 coefficients the crossovers are the measured ones.
+    """
+    l = 2.5e-9
+    big_k, small_k = 1e14, 1e-3  # far beyond both crossovers (k1 = 5e5, k2 ~ 1e6 1/m here)
+    for dim in (1, 2):
+        p = params_from_rates(RATES, dim=dim, n=64)
+        kw = p.theory_kwargs()
+        hi = float(spectra.stationary_psd(np.array([big_k]), **kw)[0])
+        lo = float(spectra.stationary_psd(np.array([small_k]), **kw)[0])
+        # 2D: the slab thickness defaults to one step length, so the 2D plateau is w l^3 = l^4.
+        assert hi == pytest.approx(l ** (dim + 2), rel=1e-6)
+        assert lo == pytest.approx(l ** (dim + 2) * (3.0 + 1.0) / (2 * 0.5), rel=1e-6)
+        assert p.d0 == 2e-12 and p.mu == 0.5
+    # The transfer rate is turned into a frequency at the MCA's velocity, never the part's.
+    r = params_from_rates({"transfer_rate": 2e-3, "wear_rate": 0.0, "diffusion_m2_s": 1e-12, "step_length_m": l,
+                           "sliding_velocity_m_s": 0.5}, n=8, duration=1.0)
     assert r.dz == pytest.approx(l**3 * 1e-3 / 2) and r.mu == 0.0
+    # D0 = 0 is a value (no diffusion), not a missing number replaced by a random-walk guess
+    # (old code: `_rate(...) or l^2/(2 d tau)`): the legacy flux noise l^3 D0 vanishes with it.
+    z = params_from_rates({**RATES, "diffusion_m2_s": 0.0})
+    assert z.d0 == 0.0 and z.dx_noise == 0.0
+    # With a measured flux noise, D0 = 0 has no stationary high-k spectrum: an error, not a guess.
+    with pytest.raises(ParameterError, match="rates.d0_m2_s"):
+        params_from_rates({"mu_per_s": 1.0, "d0_m2_s": 0.0, "dz": 1e-30, "dx_l2": 1e-40, "sliding_velocity_m_s": 1.0})
+    with pytest.raises(ParameterError, match=r"missing \['d0_m2_s', 'dx_l2'\]"):
+        params_from_rates({k: v for k, v in RATES.items() if k != "diffusion_m2_s"})
+    # Measured C1 coefficients set the shape: the crossovers of the spectrum are sqrt(mu/D0), sqrt(Dz/Dx l^2).
+    c1 = {"mu_per_s": 1e3, "d0_m2_s": 1e-9, "dz": 1e-24, "dx_l2": 1e-40, "sliding_velocity_m_s": 5.0}
+    q = params_from_rates(c1, dim=1, n=64, dx=1e-7)
+    k = np.geomspace(1e2, 1e10, 4001)
+    s = spectra.stationary_psd(k, **q.theory_kwargs())
+    slope = np.gradient(np.log(s), np.log(k))
+    # Half-way crossings of the log slope (0 -> -2 near k1 = 1e6, -2 -> 0 near k2 = 1e8 1/m); mid-way the
+    # slope is -2 up to 4 (k1/k)^2 = 0.04:
+    k1, k2 = math.sqrt(1e3 / 1e-9), math.sqrt(1e-24 / 1e-40)
+    assert k[np.argmin(np.abs(slope[k < math.sqrt(k1 * k2)] + 1.0))] == pytest.approx(k1, rel=0.02)
+    assert k[k > math.sqrt(k1 * k2)][np.argmin(np.abs(slope[k > math.sqrt(k1 * k2)] + 1.0))] == pytest.approx(k2, rel=0.02)
+    assert slope[np.argmin(np.abs(k - math.sqrt(k1 * k2)))] == pytest.approx(-2.0, abs=0.05)
 
 
 @pytest.mark.parametrize(
     "rates, match",
     [
-        ({"step_time_s": 1e-9, "detachment_rate": 1.0}, "rates.step_length_m"),
+        ({"step_time_s": 1e-9, "detachment_rate": 1.0, "sliding_velocity_m_s": 1.0}, "missing"),
         ({**RATES, "diffusion_m2_s": -1.0}, "rates.diffusion_m2_s"),
-        ({**RATES, "step_time_s": 0.0}, "rates.step_time_s"),
-        ({"step_length_m": 1e-9, "step_time_s": 1e-9, "transfer_rate": 1.0}, "rates: expected detachment_rate"),
+        ({**RATES, "sliding_velocity_m_s": None}, "rates.sliding_velocity_m_s"),
+        ({"step_length_m": 1e-9, "diffusion_m2_s": 1e-12, "wear_rate": 1.0, "sliding_velocity_m_s": 1.0},
+         r"missing \['dz'\]"),
         ({**RATES, "wear_rate": float("nan")}, "rates.wear_rate"),
     ],
 )
@@ -74,10 +103,11 @@ def test_params_from_scene_direct_and_rates():
     q = params_from_scene(scene, rates=RATES)
     assert q.d0 == 2e-12 and q.n == t.grid_points and q.dx == t.pixel_size
     data = {"rates": {"diffusion_m2_s": 3e-12, "step_length_m": 2e-9, "step_time_s": 1e-9,
-                      "transfer_rate": 1e-2, "wear_rate": 1e-2},
+                      "transfer_rate": 1e-2, "wear_rate": 1e-2, "sliding_velocity_m_s": 5.0},
             "kinematics": {"sliding_velocity": 0.1}}
     s = params_from_scene(parse_scene(data))
-    assert s.d0 == 3e-12 and s.dz == pytest.approx(2e-9**3 * 1e-3 / 2)
+    # The transfer frequency is taken at the MCA's 5 m/s, not the part's 0.1 m/s (issue 15).
+    assert s.d0 == 3e-12 and s.dz == pytest.approx(2e-9**3 * 5e-2 / 2 * (2e-9 if s.dim == 2 else 1.0))
 
 
 @pytest.mark.parametrize("shape", [(64,), (16, 24)])

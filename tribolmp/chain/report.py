@@ -103,6 +103,8 @@ def report_dict(
         "results": results,
         "handoffs": handoffs,
         "figures": figures or {},
+        # Issue 15 contract: the running-in series of the part (topography stage), top level.
+        "running_in": (results.get("topography", {}).get("values", {}) or {}).get("running_in"),
     }
 
 
@@ -147,6 +149,57 @@ def _fmt(v: Any) -> str:
     return str(v)
 
 
+def _narrative(data: dict[str, Any]) -> list[str]:
+    """A short story of what ran, from which inputs, under which assumptions (issue 15)."""
+    res = data["results"]
+    out: list[str] = []
+    topo = res.get("topography", {}).get("values", {})
+    if "running_in" in topo:
+        ri = topo["running_in"]
+        fr = topo.get("friction") or {}
+        eq = topo.get("eq23_mca") or {}
+        out += [
+            f"- **Rates** from {topo.get('rates_source')}: Eq. 23 coefficients {topo.get('eq23_source')} at the MCA's "
+            f"V = {_fmt(eq.get('velocity_m_s'))} m/s, P = {_fmt(eq.get('pressure_Pa'))} Pa "
+            f"(k1 = {_fmt(eq.get('k1'))}, k2 = {_fmt(eq.get('k2'))} 1/m)."
+            + (" " + " ".join(topo.get("eq23_warnings") or []) if topo.get("eq23_warnings") else ""),
+            f"- **At the part** every rate is multiplied by phi V_part / V_MCA (processes scale with the distance slid "
+            f"in contact; factor {_fmt(ri['rate_factor'][0])} at the start, {_fmt(ri['rate_factor'][-1])} at the end) "
+            f"and the noise intensities by the slab thickness w = {_fmt(topo.get('slab_thickness_m'))} m "
+            f"({topo.get('slab_thickness_source')}) to go from the MCA's 1D profile to the 2D surface.",
+            f"- **Surface**: {topo.get('surface_source')}, side {_fmt(topo.get('domain_size_m'))} m; Rq "
+            f"{_fmt(topo.get('rq_initial_m'))} -> {_fmt(topo.get('rq_final_m'))} m over "
+            f"{_fmt(topo.get('sliding_distance_m'))} m of sliding in {ri.get('checkpoints')} checkpoints "
+            f"({ri.get('substeps')} Eq. 23 sub-steps, phi changing by at most the stated tolerance per sub-step).",
+            f"- **Contact** at every checkpoint: {ri.get('contact_method')} ({topo.get('contact_method_reason')}); "
+            f"real-contact fraction: {ri.get('phi_source')}.",
+            f"- **Stiffness** of the apparent contact: interfacial stiffness per area x A in series with the bonded "
+            f"punch 2E*sqrt(A/pi) = {_fmt(ri.get('bound_N_m'))} N/m (the bound); "
+            f"{_fmt(ri['normal_stiffness_N_m'][0])} -> {_fmt(ri['normal_stiffness_N_m'][-1])} N/m.",
+            f"- **Friction**: mu_k = {_fmt(fr.get('mu_kinetic'))}, mu_s = {_fmt(fr.get('mu_static'))} ({fr.get('source')}); "
+            f"matched at the {fr.get('pressure_source')} pressure {_fmt(fr.get('pressure_Pa'))} Pa"
+            + (f"; **extrapolated**: {fr.get('extrapolation')}" if fr.get("extrapolated") else "") + ".",
+        ]
+        conv = ri.get("convergence")
+        if conv:
+            out.append(f"- **Convergence**: halving the checkpoint spacing ({conv['checkpoints'][0]} -> "
+                       f"{conv['checkpoints'][1]}) changes the final Rq by {_fmt(conv['rq_final_rel_change'])} and the "
+                       f"stiffness by {_fmt(conv['stiffness_final_rel_change'])} (relative).")
+    mac = res.get("macroscale", {}).get("values", {})
+    if mac:
+        out.append(f"- **Rigid body**: contact stiffness {_fmt(mac.get('contact_stiffness_N_m'))} N/m "
+                   f"({mac.get('contact_stiffness_source')}), bound {_fmt(mac.get('contact_stiffness_bound_N_m'))} N/m; "
+                   f"{mac.get('n_slip_events')} slip events with mu_s = {_fmt(mac.get('mu_static'))}, "
+                   f"mu_k = {_fmt(mac.get('mu_kinetic'))}.")
+    tri = res.get("tribospectroscopy", {}).get("values", {})
+    if tri:
+        out.append(f"- **Tribospectroscopy**: length {_fmt(tri.get('length_m'))} m from {tri.get('length_source')}; "
+                   f"fitted on a simulated measurement with {_fmt(tri.get('measurement_noise_rel'))} relative noise: "
+                   f"{_fmt(tri.get('fitted_length_m'))} m, 68 % interval {tri.get('fitted_length_interval_m')} "
+                   f"({tri.get('fit_message')}).")
+    return (["", "## What ran, from which inputs, under which assumptions", ""] + out) if out else []
+
+
 def _markdown(data: dict[str, Any]) -> str:
     sc = data["scene"]
     lines = [
@@ -169,6 +222,7 @@ def _markdown(data: dict[str, Any]) -> str:
             f"| {r['name']} | {'yes' if r['ran'] else 'no'} ({status}) | {r['time_s']:.2f} "
             f"| {r['reason']} |"
         )
+    lines += _narrative(data)
     lines += ["", "## Results (SI units)", ""]
     for name, res in data["results"].items():
         lines += [f"### {name}", "", "| quantity | value | unit |", "|---|---|---|"]

@@ -37,6 +37,7 @@ from .schema import (
     Polishing,
     Rates,
     Roughness,
+    RunningIn,
     SceneMeta,
     Topography,
     Tribospectroscopy,
@@ -72,6 +73,7 @@ class Scene:
     topography: Topography | None = None
     tribospectroscopy: Tribospectroscopy | None = None
     rates: Rates | None = None
+    running_in: RunningIn | None = None
     source: str = "<default>"
 
     @property

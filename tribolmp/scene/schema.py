@@ -34,6 +34,7 @@ __all__ = [
     "Contact",
     "Tribospectroscopy",
     "Rates",
+    "RunningIn",
     "Outputs",
     "OUTPUT_CHOICES",
     "SECTIONS",
@@ -307,6 +308,22 @@ def _rates_section() -> type[Section]:
 Rates = _rates_section()
 
 
+@dataclass(frozen=True)
+class RunningIn(Section):
+    """``[running_in]``: the coupled running-in of the part's surface (issue 15; owner runin)."""
+
+    _name = "running_in"
+    checkpoints: int = param(8, lo=1, hi=10_000, doc="Contact solves over the sliding duration.")
+    phi_tolerance: float = param(0.05, lo=0.0, lo_open=True, hi=1e9, doc="Largest relative change of phi per Eq. 23 sub-step.")
+    friction_pressure: str = param("nominal", choices=("nominal", "real"), doc="Part pressure matched to the MCA: nominal N/A0 or mean real p/phi.")
+    mu_static: float | None = param(None, lo=0.0, hi=10.0, doc="Static friction coefficient (stated; default static_ratio * mu_k).")
+    mu_kinetic: float | None = param(None, lo=0.0, hi=10.0, doc="Kinetic friction coefficient (stated; default the MCA's).")
+    static_ratio: float = param(1.0, lo=1.0, hi=10.0, doc="mu_s / mu_k when mu_static is not given (stated assumption).")
+    tribospec_length: str = param("correlation", choices=("correlation", "layer_depth"), doc="Length scale handed to tribospectroscopy.")
+    measurement_noise: float = param(0.05, lo=0.0, hi=1.0, doc="Relative noise of the simulated F^2(a) measurement.")
+    convergence_check: bool = param(True, doc="Rerun with half the checkpoint spacing and report the change.")
+
+
 OUTPUT_CHOICES = (
     "friction",
     "mca_snapshot",
@@ -349,6 +366,7 @@ SECTIONS: dict[str, type[Section]] = {
     "contact": Contact,
     "tribospectroscopy": Tribospectroscopy,
     "rates": Rates,
+    "running_in": RunningIn,
     "outputs": Outputs,
 }
 

@@ -13,9 +13,15 @@ from ._rates import mu_binding, nanoscale_rates
 
 def _draw_stick_slip(ax, result, run) -> None:
     d = np.load(result.file("trajectory"))
-    ax.plot(d["t"], d["friction"], lw=0.8, label="drive-spring force (N)")
+    ax.plot(d["t"], d["friction"], lw=0.8, label="drive-spring force")
+    if "contact_force" in d:
+        ax.plot(d["t"], d["contact_force"], lw=0.8, alpha=0.8, label="contact friction force (drive - m dv/dt)")
+    if "mu_s_N" in d:
+        ax.axhline(float(d["mu_s_N"]), color="k", ls="--", lw=0.8, label="mu_s N")
+        ax.axhline(float(d["mu_k_N"]), color="k", ls=":", lw=0.8, label="mu_k N")
     ax.set_xlabel("t (s)")
     ax.set_ylabel("F (N)")
+    ax.legend(fontsize=6, loc="lower right")
     if "velocity" in d:
         ax2 = ax.twinx()
         ax2.plot(d["t"], d["velocity"], "r", lw=0.5)
@@ -35,9 +41,9 @@ class Macroscale(Stage):
         Handoff("squeeze", units={"t": "s", "gap": "m", "film_force": "N", "contact_force": "N"},
                 doc="squeeze.npz: approach through the film (lubricated scenes)"),
     )
-    consumes = ("stiffness", "rates")
+    consumes = ("stiffness", "rates", "running_in")
     outputs = ("stick_slip",)
-    sections = _SECTIONS + ("rates", "lubricant", "roughness")
+    sections = _SECTIONS + ("rates", "lubricant", "roughness", "running_in")
     figures = (
         Figure("stick_slip", "trajectory", _draw_stick_slip, "stick-slip of the rigid body",
                "Rigid body on the contact: friction force and slider velocity (stick-slip)"),
@@ -60,7 +66,7 @@ class Macroscale(Stage):
             options["squeeze_film"] = True
             film = "; normal load shared with the [lubricant] squeeze film"
         return self.go(f"outputs request 'stick_slip': rigid body on {how}, {{mu}}{film}", sections=sections,
-                       options=options, wants=("stiffness", "rates"))
+                       options=options, wants=("stiffness", "rates", "running_in"))
 
     def bind(self, scene, decision: Decision, supplied) -> Decision:
         """Say where mu comes from (and hash its section)."""
@@ -69,24 +75,41 @@ class Macroscale(Stage):
     def run(self, ctx: StageContext) -> StageOutput:
         """Stick-slip of the rigid body pulled through a spring, on the contact, with the chain's mu."""
         from ...models import macro
+        from ...models.bridges import punch_bound
 
         choice = friction_coefficient(ctx.scene, nanoscale_rates(ctx))
         mu, mu_src = choice.mu, choice.source
         # the rough MDR profile (if the scene has one) is drawn from the chain's stream, never silently a sphere
         kw: dict[str, Any] = {"mu": mu, "rng": ctx.rng}
+        runin = ctx.handoff("running_in")
+        fr = runin.values.get("friction") if runin is not None else None
+        if fr:
+            # Static and kinetic coefficients at the part (the running-in stage states rule and sources).
+            kw["law"] = macro.ConstantFriction(mu_s=float(fr["mu_static"]), mu_k=float(fr["mu_kinetic"]))
+            mu, mu_src = float(fr["mu_kinetic"]), "running-in: " + str(fr["source"])
+        elif choice.mu_static != choice.mu_kinetic:
+            kw["law"] = macro.ConstantFriction(mu_s=choice.mu_static, mu_k=choice.mu_kinetic)
+        scene = ctx.scene
         stiff = ctx.handoff("stiffness")
+        extra: dict[str, Any] = {}
+        bound = None
         if ctx.plan.options.get("contact_law") == "stiffness" and stiff is not None:
-            from ...models.macro.stiffness import tangential_stiffness_from_table
+            from ...models.macro.stiffness import apparent_tangential_stiffness
 
-            v, geo = stiff.values, ctx.scene.geometry
-            kc, kc_src = tangential_stiffness_from_table(
-                v["pressure"], v["stiffness"], v["force"], normal_force=ctx.scene.load.normal_force,
-                apparent_area=geo.apparent_length * geo.apparent_width,
-                shear_to_normal=ctx.scene.effective_shear_modulus / ctx.scene.effective_modulus)
+            v, geo = stiff.values, scene.geometry
+            kc, kc_src, extra = apparent_tangential_stiffness(
+                v["pressure"], v["stiffness"], v["force"], normal_force=scene.load.normal_force,
+                apparent_area=geo.apparent_length * geo.apparent_width, E_star=scene.effective_modulus,
+                shear_to_normal=scene.effective_shear_modulus / scene.effective_modulus)
             kw["contact_stiffness"] = kc
+            bound = extra["bound"]
         else:
             kw["contact_law"] = "mdr"
             kc, kc_src = None, "MDR springs of the [geometry] profile (load dependent)"
+            if scene.geometry.profile == "sphere" and scene.load.normal_force > 0:
+                # Apparent area of a sphere: the Hertz circle at the load; its bonded-punch bound is 2E*a.
+                a = (3.0 * scene.load.normal_force * scene.geometry.radius / (4.0 * scene.effective_modulus)) ** (1 / 3)
+                bound = punch_bound(np.pi * a * a, scene.effective_modulus)
         film = bool(ctx.plan.options.get("squeeze_film")) and ctx.scene.lubricant is not None
         if film:
             from ...models.lubrication.rupture import film_rupture_gap
@@ -94,13 +117,34 @@ class Macroscale(Stage):
             kw["contact_gap"], hc_src = film_rupture_gap(ctx.scene)
         res = macro.stick_slip_from_scene(ctx.scene, **kw)
         t = np.asarray(res.t)
-        np.savez(ctx.workdir / "trajectory.npz", t=t, x=res.x, velocity=res.v, friction=res.drive_force, phase=res.phase)
+        law = kw.get("law")
+        mu_s = float(law.mu_s) if law is not None else mu
+        mu_k = float(law.kinetic(0.0)) if law is not None else mu
+        # Newton on the body: the contact's friction force is the drive force minus m dv/dt
+        # (event times repeat in the trajectory: differentiate across distinct times only).
+        v_arr = np.asarray(res.v, float)
+        acc = np.zeros_like(v_arr)
+        step = np.diff(t)
+        ok = step > 0
+        if np.count_nonzero(ok) >= 2:
+            acc = np.interp(t, 0.5 * (t[1:] + t[:-1])[ok], np.diff(v_arr)[ok] / step[ok])
+        f_contact = np.asarray(res.drive_force, float) - scene.kinematics.mass * acc
+        np.savez(ctx.workdir / "trajectory.npz", t=t, x=res.x, velocity=res.v, friction=res.drive_force,
+                 drive_force=res.drive_force, contact_force=f_contact, phase=res.phase,
+                 mu_s_N=mu_s * scene.load.normal_force, mu_k_N=mu_k * scene.load.normal_force)
         slips = [e for e in res.events if str(e.get("to_phase", "")).startswith("slip")]
         values = {
             "mu": mu,
             "mu_source": mu_src,
             "contact_stiffness_N_m": kc,
             "contact_stiffness_source": kc_src,
+            "contact_stiffness_bound_N_m": bound,
+            "contact_stiffness_bound_source": "bonded punch 2E*sqrt(A/pi) of the apparent area" if bound else None,
+            "contact_normal_stiffness_N_m": extra.get("normal"),
+            "interfacial_stiffness_per_area_N_m3": extra.get("k_int_per_area"),
+            "interface_compliance_share": extra.get("interface_share"),
+            "mu_static": mu_s,
+            "mu_kinetic": mu_k,
             "n_transitions": int(res.n_transitions),
             "n_slip_events": len(slips),
             "max_drive_force_N": float(np.max(res.drive_force)),
@@ -109,7 +153,9 @@ class Macroscale(Stage):
             "duration_s": float(t[-1]) if t.size else 0.0,
             "first_slip_time_s": float(slips[0]["t"]) if slips else None,
         }
-        units = {"mu": "1", "contact_stiffness_N_m": "N/m", "max_drive_force_N": "N", "mean_drive_force_N": "N",
+        units = {"mu": "1", "contact_stiffness_N_m": "N/m", "contact_stiffness_bound_N_m": "N/m",
+                 "contact_normal_stiffness_N_m": "N/m", "interfacial_stiffness_per_area_N_m3": "N/m^3",
+                 "interface_compliance_share": "1", "mu_static": "1", "mu_kinetic": "1", "max_drive_force_N": "N", "mean_drive_force_N": "N",
                  "max_velocity_m_s": "m/s", "duration_s": "s", "first_slip_time_s": "s"}
         files = {"trajectory": "trajectory.npz"}
         message = str(res.message)

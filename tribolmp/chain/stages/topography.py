@@ -28,6 +28,67 @@ def _draw_psd(ax, result, run) -> None:
     ax.legend(fontsize=7)
 
 
+def _runin(result):
+    return np.load(result.file("runin"))
+
+
+def _draw_runin_rq(ax, result, run) -> None:
+    d = _runin(result)
+    s = d["sliding_distance_m"] * 1e3
+    ax.plot(s, d["rq_m"] * 1e9, "o-", ms=3, label="Rq")
+    ax.set_xlabel("sliding distance (mm)")
+    ax.set_ylabel("Rq (nm)")
+    ax.set_yscale("log")
+    ax2 = ax.twinx()
+    ra = d["real_area_fraction"]
+    if np.any(np.isfinite(ra)):
+        ax2.plot(s, ra, "s-", color="tab:red", ms=3, label="real-contact fraction (BEM)")
+    ax2.plot(s, d["phi"], "--", color="tab:red", lw=0.8, label="phi used by the rates")
+    ax2.set_ylabel("real-contact fraction", color="tab:red")
+    ax2.legend(fontsize=6, loc="center right")
+
+
+def _draw_runin_psd(ax, result, run) -> None:
+    d = _runin(result)
+    k = d["k"]
+    n = d["psd"].shape[0]
+    for i in sorted({0, n // 2, n - 1}):
+        line, = ax.loglog(k, d["psd"][i], ".", ms=2, label=f"checkpoint {i}: {d['sliding_distance_m'][i] * 1e3:.3g} mm")
+        ax.loglog(k, d["psd_theory"][i], "-", lw=0.8, color=line.get_color())
+    ax.set_xlabel("k (1/m)")
+    ax.set_ylabel("radial PSD (m^4)")
+    ax.legend(fontsize=6, title="dots: surface, lines: Eq. 23 expectation", title_fontsize=6)
+
+
+def _draw_runin_stiffness(ax, result, run) -> None:
+    d = _runin(result)
+    s = d["sliding_distance_m"] * 1e3
+    ax.semilogy(s, d["normal_stiffness_N_m"], "o-", ms=3, label="apparent contact (interface + punch in series)")
+    ax.axhline(float(d["bound_N_m"]), color="k", ls="--", lw=0.8, label="bonded punch 2E*sqrt(A/pi)")
+    ax.set_xlabel("sliding distance (mm)")
+    ax.set_ylabel("normal stiffness (N/m)")
+    ax.legend(fontsize=6)
+
+
+def _draw_runin_mu(ax, result, run) -> None:
+    d = _runin(result)
+    ax.plot(d["sliding_distance_m"] * 1e3, d["mu"], "o-", ms=3, label="mu_k at the matched MCA condition")
+    fr = result.values.get("friction") or {}
+    if fr.get("mu_static") is not None:
+        ax.axhline(float(fr["mu_static"]), color="k", ls="--", lw=0.8, label="mu_s (stated)")
+    ax.set_xlabel("sliding distance (mm)")
+    ax.set_ylabel("friction coefficient")
+    ax.legend(fontsize=6)
+
+
+def running_in_mode(scene) -> bool:
+    """True when the topography stage evolves the part's own surface (rough geometry with [roughness])."""
+    return scene.topography is not None and scene.roughness is not None and scene.geometry.profile == "rough"
+
+
+_RUNIN_SECTIONS = ("roughness", "running_in", "load", "geometry", "material", "counter_material", "contact")
+
+
 class Topography(Stage):
     """Eq. 23 surface evolution with the nanoscale rates (or ``[rates]``, or ``[topography]`` values)."""
 
@@ -35,13 +96,27 @@ class Topography(Stage):
     produces = (
         Handoff("surface", units={"heights": "m", "pixel_size": "m"}, doc="surface.npy (+ surface.json sidecar): evolved height map"),
         Handoff("psd", units={"k": "1/m", "psd": "m^(d+2)", "psd_theory": "m^(d+2)"}, doc="psd.npz: PSD against Eq. 23 theory"),
+        Handoff("running_in", file="running_in",
+                units={"sliding_distance_m": "m", "time_s": "s", "rq_m": "m", "normal_stiffness_N_m": "N/m",
+                       "real_area_fraction": "1", "mu": "1"},
+                doc="running_in.json + runin.npz: the part's surface, contact and friction over the sliding distance"),
     )
     consumes = ("rates",)
     outputs = ("topography",)
-    sections = ("topography", "kinematics", "rates")
+    sections = ("topography", "kinematics", "rates") + _RUNIN_SECTIONS
     figures = (
         Figure("psd", "psd", _draw_psd, "topography PSD (cf. Fig. 10)",
                "Power spectral density of the evolved topography against the Eq. 23 theory (cf. Fig. 10)"),
+        Figure("runin_rq", "runin", _draw_runin_rq, "running-in: Rq and real-contact fraction",
+               "Running-in of the part's surface: Rq and the real-contact fraction (BEM; dashed: phi used by the "
+               "rates) against sliding distance"),
+        Figure("runin_psd", "runin", _draw_runin_psd, "running-in: PSD at checkpoints vs Eq. 23",
+               "Radial PSD of the part's surface at checkpoints (dots) against the Eq. 23 expectation for the same "
+               "coefficients (lines)"),
+        Figure("runin_stiffness", "runin", _draw_runin_stiffness, "running-in: apparent-contact stiffness",
+               "Normal stiffness of the apparent contact against sliding distance, below the bonded-punch bound"),
+        Figure("runin_mu", "runin", _draw_runin_mu, "running-in: friction coefficient",
+               "Friction coefficient at the MCA condition matched to the part, against sliding distance"),
     )
 
     def plan(self, scene, demand: Demand) -> Decision:
@@ -57,6 +132,30 @@ class Topography(Stage):
         if not (demand.requested("topography") or demand.wants("surface")):
             return self.skip("no requested output needs the evolved surface")
         why = "outputs request 'topography'" if demand.requested("topography") else "the evolved surface feeds contact"
+        if running_in_mode(scene):
+            # Issue 15: the part's own [roughness] surface runs in, coupled to the contact at every checkpoint.
+            c = scene.contact
+            if c.method == "auto":
+                import json
+
+                from ...environment import data_path
+                from ...models.contact.choice import choose_method, reduced_pressures_of_scene
+
+                # The same measured table and rule as the contact stage (no stage imports another).
+                table = demand.overrides.get("contact_table")
+                if table is None:
+                    try:
+                        table = json.loads(data_path("contact_speed_error.json").read_text())
+                    except (OSError, ValueError):
+                        table = None
+                choice = choose_method(c.tolerance, table, reduced_pressures=reduced_pressures_of_scene(scene))
+                method, mwhy = choice["method"], "auto: " + choice["why"]
+            else:
+                method, mwhy = c.method, f"method '{c.method}' set in [contact]"
+            return self.go(f"the part's [roughness] surface runs in over [kinematics].duration, {method.upper()} contact "
+                           f"at every checkpoint; {why}", sections=("topography", "kinematics") + _RUNIN_SECTIONS,
+                           options={"running_in": True, "contact_method": method, "contact_method_reason": mwhy},
+                           wants=("rates",))
         return self.go(why, sections=("topography", "kinematics"), wants=("rates",))
 
     def bind(self, scene, decision: Decision, supplied) -> Decision:
@@ -88,6 +187,8 @@ class Topography(Stage):
 
     def run(self, ctx: StageContext) -> StageOutput:
         """Eq. 23 with the upstream rates -> final height map (``surface.npy`` + sidecar JSON) and its PSD."""
+        if ctx.plan.options.get("running_in"):
+            return _running_in(ctx)
         from ...models import topography as topo
 
         rates, rates_src = upstream_rates(ctx)
@@ -112,6 +213,124 @@ class Topography(Stage):
             message=res.message,
             nit=int(res.nit),
         )
+
+
+def _fallback_from_topography(scene, slab: float) -> dict:
+    """The scene's ``[topography]`` Eq. 23 values in the 1D C1 names (for coefficients the MCA did not measure)."""
+    from ...models.topography.rates import topography_fallback
+    from ...scene.schema import Topography as TopoSection
+
+    return topography_fallback(scene.topography or TopoSection(), slab)
+
+
+def _running_in(ctx: StageContext) -> StageOutput:
+    """The part's [roughness] surface runs in by Eq. 23, coupled to the contact (issue 15)."""
+    from ...environment import data_path
+    from ...jsonio import atomic_write_json, jsonable
+    from ...models import bridges, runin
+    from ...models.topography import save_height_map
+    from ...scene.schema import RunningIn
+
+    scene = ctx.scene
+    rates, rates_src = upstream_rates(ctx)
+    if rates is None:
+        raise ValueError("running-in needs nanoscale rates ([nanoscale] or [rates])")
+    ri = scene.running_in or RunningIn()
+    # Slab thickness of the 2D MCA: given, else the automaton diameter of the run, else the step length.
+    if rates.slab_thickness_m:
+        slab, slab_src = rates.slab_thickness_m, "rates slab_thickness_m"
+    elif rates.automaton_diameter_m:
+        slab, slab_src = rates.automaton_diameter_m, "rates automaton_diameter_m (one automaton thick)"
+    elif scene.nanoscale is not None:
+        slab, slab_src = scene.nanoscale.automaton_diameter, "[nanoscale].automaton_diameter"
+    elif rates.step_length_m:
+        slab, slab_src = rates.step_length_m, "step_length_m (one automaton)"
+    else:
+        raise ValueError("rates: slab_thickness_m, automaton_diameter_m or step_length_m is needed for the 2D surface")
+    eq = bridges.eq23_from_rates(rates, fallback=_fallback_from_topography(scene, float(slab)))
+    method = ctx.plan.options.get("contact_method", "mdr")
+    rough = scene.roughness
+    surf_rng, noise_rng = ctx.rng.spawn(2)
+    h0, dx, surf_src = runin.part_surface(
+        rms_height=rough.rms_height, hurst=rough.hurst, rolloff_wavelength=rough.rolloff_wavelength,
+        short_cutoff_wavelength=rough.short_cutoff_wavelength, grid_points=rough.grid_points,
+        pixel_size=rough.pixel_size, rng=surf_rng, surface_file=rough.surface_file)
+    geo = scene.geometry
+    area = geo.apparent_length * geo.apparent_width
+    seed = int(ctx.seed[-1]) if ctx.seed else 0
+    params = runin.RunInParams(
+        duration=scene.kinematics.duration, velocity=scene.kinematics.sliding_velocity,
+        normal_force=scene.load.normal_force, apparent_area=area, modulus=scene.effective_modulus,
+        checkpoints=ri.checkpoints, slab_thickness=float(slab), contact_method=method,
+        realizations=rough.realizations, contact_seed=seed, phi_tolerance=ri.phi_tolerance)
+    # Friction at the part: the shipped nanoscale table when present, else the one measured condition.
+    table_path = data_path("nanoscale_table.json")
+    if table_path.is_file():
+        rows, fr_src = bridges.load_nanoscale_table(table_path), "tribolmp/data/nanoscale_table.json"
+    else:
+        mu0 = rates.mu if rates.mu is not None else scene.load.friction_coefficient
+        rows = [{"pressure_Pa": eq.pressure_Pa or params.pressure, "sliding_velocity_m_s": eq.velocity_m_s, "mu": float(mu0)}]
+        fr_src = rates_src if rates.mu is not None else "[load].friction_coefficient (no measured mu)"
+    mu_s_given = ri.mu_static if ri.mu_static is not None else rates.mu_static
+    mu_k_given = ri.mu_kinetic if ri.mu_kinetic is not None else rates.mu_kinetic
+
+    def friction(phi: float):
+        p = params.pressure if ri.friction_pressure == "nominal" else params.pressure / max(phi, 1e-300)
+        return bridges.friction_at_part(rows, pressure_Pa=p, velocity_m_s=max(params.velocity, 1e-300),
+                                        mu_static=mu_s_given, mu_kinetic=mu_k_given,
+                                        static_ratio=ri.static_ratio, pressure_source=ri.friction_pressure)
+
+    res = runin.running_in(h0, dx, eq, params, rng=noise_rng, mu_of_phi=lambda phi: friction(phi)["mu_kinetic"])
+    ctx.progress(0.5, "running-in done; convergence check" if ri.convergence_check else "running-in done")
+    fr = friction(res.phi[-1])
+    conv = runin.checkpoint_convergence(h0, dx, eq, params, seed=seed, coarse=res) if ri.convergence_check else None
+    w = ctx.workdir
+    save_height_map(w / "surface.npy", res.h, dx)
+    np.save(w / "initial_surface.npy", h0)
+    np.savez(w / "psd.npz", k=res.k, psd=res.psd[-1], psd_theory=res.psd_theory[-1])
+    np.savez(w / "runin.npz", k=res.k, psd=res.psd, psd_theory=res.psd_theory,
+             sliding_distance_m=np.asarray(res.sliding_distance_m), rq_m=np.asarray(res.rq_m),
+             normal_stiffness_N_m=np.asarray(res.normal_stiffness_N_m), phi=np.asarray(res.phi),
+             real_area_fraction=np.array([np.nan if a is None else a for a in res.real_area_fraction]),
+             mu=np.asarray(res.mu, float), bound_N_m=res.bound_N_m)
+    running = {k: jsonable(list(res[src])) for k, src in
+               (("sliding_distance_m", "sliding_distance_m"), ("time_s", "sliding_time_s"), ("rq_m", "rq_m"),
+                ("normal_stiffness_N_m", "normal_stiffness_N_m"), ("real_area_fraction", "real_area_fraction"),
+                ("mu", "mu"))}
+    running.update(phi_used=[float(x) for x in res.phi], phi_source=res.phi_source, contact_method=method,
+                   rate_factor=[float(x) for x in res.rate_factor], bound_N_m=float(res.bound_N_m),
+                   checkpoints=params.checkpoints, substeps=int(res.substeps))
+    if conv is not None:
+        running["convergence"] = {"checkpoints": list(conv.checkpoints), "rq_final_rel_change": float(conv.rq_delta),
+                                  "stiffness_final_rel_change": float(conv.stiffness_delta)}
+    atomic_write_json(w / "running_in.json", running)
+    corr = bridges.correlation_length(res.h, dx)
+    values = {
+        "dim": 2, "domain_size_m": float(res.domain_size_m), "pixel_size_m": float(dx), "grid_points": int(res.h.shape[0]),
+        "rq_initial_m": float(res.rq_initial_m), "rq_final_m": float(res.rq_final_m), "rq": float(res.rq_final_m),
+        "correlation_length_m": corr if np.isfinite(corr) else None, "surface_source": surf_src,
+        "sliding_distance_m": params.velocity * params.duration, "duration_s": params.duration,
+        "rates_source": rates_src, "eq23_source": eq.source, "eq23_sources": dict(eq.sources),
+        "eq23_warnings": list(eq.warnings), "shape_fixed_by_identity": bool(eq.shape_fixed_by_identity),
+        "eq23_mca": jsonable({k: eq[k] for k in ("mu", "d0", "dz", "dx_l2", "k1", "k2", "velocity_m_s", "pressure_Pa")}),
+        "k1": jsonable(eq.k1), "k2": jsonable(eq.k2),
+        "slab_thickness_m": float(slab), "slab_thickness_source": slab_src,
+        "contact_method": method, "contact_method_reason": ctx.plan.options.get("contact_method_reason"),
+        "phi_source": res.phi_source,
+        "friction": jsonable({k: fr[k] for k in ("mu", "mu_kinetic", "mu_static", "extrapolated", "extrapolation",
+                                                 "pressure_Pa", "pressure_source", "source", "velocity_table")}),
+        "friction_table_source": fr_src,
+        "running_in": running,
+    }
+    units = {"domain_size_m": "m", "pixel_size_m": "m", "rq_initial_m": "m", "rq_final_m": "m", "rq": "m",
+             "correlation_length_m": "m", "sliding_distance_m": "m", "duration_s": "s", "slab_thickness_m": "m",
+             "k1": "1/m", "k2": "1/m"}
+    files = {"surface": "surface.npy", "surface_meta": "surface.json", "initial_surface": "initial_surface.npy",
+             "psd": "psd.npz", "runin": "runin.npz", "running_in": "running_in.json"}
+    if (w / "rates.json").exists():
+        files["rates"] = "rates.json"
+    return StageOutput(values=values, units=units, files=files, method=res.method, message=res.message,
+                       nit=int(res.substeps))
 
 
 STAGE = Topography()

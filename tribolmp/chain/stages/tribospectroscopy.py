@@ -11,7 +11,15 @@ from ._rates import mu_binding, nanoscale_rates
 
 def _draw_f2(ax, result, run) -> None:
     d = np.load(result.file("f2"))
-    ax.plot(d["amplitude"] * 1e9, d["f2"], "o", ms=3, label="simulated")
+    if "f2_measured" in d:
+        ax.plot(d["amplitude"] * 1e9, d["f2_measured"], "o", ms=3, label="simulated measurement (with noise)")
+        ax.plot(d["amplitude"] * 1e9, d["f2"], "-", color="0.6", lw=1,
+                label=f"model, length {float(d['length_m']) * 1e9:.3g} nm (upstream)")
+        lo, hi = d["interval"]
+        ax.plot(d["amplitude"] * 1e9, d["f2_fit"], "k-", lw=1,
+                label=f"fit: {float(d['fitted_length_m']) * 1e9:.3g} nm, 68 % [{lo * 1e9:.3g}, {hi * 1e9:.3g}] nm")
+    else:
+        ax.plot(d["amplitude"] * 1e9, d["f2"], "o", ms=3, label="simulated")
     ax.set_xlabel("amplitude a (nm)")
     ax.set_ylabel("F^2 (N^2)")
     ax.legend()
@@ -22,9 +30,9 @@ class Tribospectroscopy(Stage):
 
     name = "tribospectroscopy"
     produces = (Handoff("f2", units={"amplitude": "m", "f2": "N^2"}, doc="f2.npz: F^2 against amplitude"),)
-    consumes = ("rates",)
+    consumes = ("rates", "running_in")
     outputs = ("tribospectroscopy",)
-    sections = ("tribospectroscopy", "load", "geometry", "material", "counter_material", "contact", "rates")
+    sections = ("tribospectroscopy", "load", "geometry", "material", "counter_material", "contact", "rates", "running_in")
     figures = (
         Figure("f2", "f2", _draw_f2, "tribospectroscopy F^2(a) (cf. Fig. 8)",
                "Tribospectroscopy: squared friction force against oscillation amplitude (cf. Fig. 8)"),
@@ -39,7 +47,7 @@ class Tribospectroscopy(Stage):
         ts = scene.tribospectroscopy
         return self.go(f"outputs request 'tribospectroscopy': F^2(a), {ts.model} model, {ts.convention} amplitudes, {{mu}}",
                        sections=("tribospectroscopy", "load", "geometry", "material", "counter_material", "contact"),
-                       options={"model": ts.model}, wants=("rates",))
+                       options={"model": ts.model}, wants=("rates", "running_in"))
 
     def bind(self, scene, decision: Decision, supplied) -> Decision:
         """Say where mu comes from; hash ``[rates]`` (or ``[load]``) when that is the source."""
@@ -48,22 +56,58 @@ class Tribospectroscopy(Stage):
     def run(self, ctx: StageContext) -> StageOutput:
         """F^2(a) of the oscillating two-contact probe with the chain's mu, and the fitted length."""
         from ...models import tribospectroscopy as ts
+        from ...models.tribospectroscopy.fit import model_curve
 
         choice = friction_coefficient(ctx.scene, nanoscale_rates(ctx))
         mu, mu_src = choice.mu, choice.source
-        params = ts.params_from_scene(ctx.scene, mu=mu)
+        over = {}
+        length_src = "[tribospectroscopy].correlation_length (scene)"
+        runin = ctx.handoff("running_in")
+        ri = ctx.scene.running_in
+        if runin is not None:
+            fr = runin.values.get("friction") or {}
+            if fr:
+                mu, mu_src = float(fr["mu_kinetic"]), "running-in: " + str(fr["source"])
+            # The length scale comes from upstream (issue 15): the evolved surface's correlation length,
+            # or the quasi-liquid layer depth of the nanoscale rates; [running_in] says which.
+            if ri is not None and ri.tribospec_length == "layer_depth":
+                from ._rates import upstream_rates
+
+                rates, rsrc = upstream_rates(ctx)
+                lam, length_src = (rates.layer_depth_m if rates is not None else None), f"layer_depth_m of the rates ({rsrc})"
+            else:
+                lam = runin.values.get("correlation_length_m")
+                length_src = "1/e correlation length of the evolved surface (topography stage)"
+            if not lam or not np.isfinite(lam) or lam <= 0:
+                raise ValueError(f"tribospectroscopy length from upstream ({length_src}) is not a positive number: {lam}")
+            over["correlation_length"] = float(lam)
+        params = ts.params_from_scene(ctx.scene, mu=mu, **over)
         res = ts.solve(params)
         a, f2 = np.asarray(res.amplitude_m), np.asarray(res.force_sq_N2)
-        # Fitting the model's own curve must return its input length: a check of the forward/inverse pair.
-        fit = ts.fit_length(ts.MeasuredCurve(amplitude=a, value=f2, quantity="force_sq", source="tribospectroscopy stage"),
-                            model=params.model)
-        np.savez(ctx.workdir / "f2.npz", amplitude=a, f2=f2)
+        # A fit is reported only on data it did not generate: a simulated measurement of the forward
+        # curve with stated multiplicative Gaussian noise (drawn from the stage's stream).
+        noise = ri.measurement_noise if ri is not None else 0.05
+        meas_rng, boot_rng = ctx.rng.spawn(2)
+        f2_meas = f2 * (1.0 + noise * meas_rng.standard_normal(f2.shape))
+        fit = ts.fit_length(ts.MeasuredCurve(amplitude=a, value=f2_meas, quantity="force_sq",
+                                             source=f"simulated measurement, {noise:g} relative noise"),
+                            model=params.model, rng=boot_rng)
+        f2_fit = model_curve(fit["model"], a, fit["length_m"], fit["force0_N"] ** 2, fit["background"], "force_sq")
+        interval = [float(x) for x in np.asarray(fit.get("length_interval_m", (np.nan, np.nan)), float)]
+        np.savez(ctx.workdir / "f2.npz", amplitude=a, f2=f2, f2_measured=f2_meas, f2_fit=f2_fit,
+                 length_m=float(res.length_m), fitted_length_m=float(fit["length_m"]), interval=np.asarray(interval))
         values = {
             "mu": mu,
             "mu_source": mu_src,
             "model": res.model,
             "amplitude_convention": res.amplitude_convention,
             "length_m": float(res.length_m),
+            "length_source": length_src,
+            "measurement_noise_rel": float(noise),
+            "fitted_length_std_m": float(fit["length_std_m"]) if np.isfinite(fit["length_std_m"]) else None,
+            "fitted_length_interval_m": [x if np.isfinite(x) else None for x in interval],
+            "fit_bounded": bool(fit.get("bounded", False)),
+            "fit_message": str(fit.get("message", "")),
             "fitted_length_m": float(fit.get("length_m", np.nan)),
             "force_at_zero_amplitude_N": float(np.sqrt(f2[0])),
             "amplitude_m": a.tolist(),
@@ -72,7 +116,8 @@ class Tribospectroscopy(Stage):
         for k in ("contact_stiffness_N_m", "shakedown_limit_m", "force0_N"):
             if k in res:
                 values[k] = float(res[k])
-        units = {**{k: u for k, u in res.units.items() if k in values}, "fitted_length_m": "m", "force_at_zero_amplitude_N": "N", "mu": "1"}
+        units = {**{k: u for k, u in res.units.items() if k in values}, "fitted_length_m": "m", "force_at_zero_amplitude_N": "N",
+                 "mu": "1", "fitted_length_std_m": "m", "fitted_length_interval_m": "m", "measurement_noise_rel": "1"}
         return StageOutput(values=values, units=units, files={"f2": "f2.npz"}, method=str(res.method), message=str(res.message))
 
 

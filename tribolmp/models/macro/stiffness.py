@@ -11,7 +11,7 @@ import numpy as np
 
 from ...errors import ParameterError
 
-__all__ = ["tangential_stiffness_from_table"]
+__all__ = ["apparent_tangential_stiffness", "tangential_stiffness_from_table"]
 
 
 def tangential_stiffness_from_table(
@@ -62,3 +62,38 @@ def tangential_stiffness_from_table(
     )
     k_t = float(k_per_area * apparent_area * shear_to_normal)
     return k_t, f"contact stage at p = {p_macro:g} Pa over {apparent_area:g} m^2, times G*/E*"
+
+
+def apparent_tangential_stiffness(pressure, stiffness, force, *, normal_force: float, apparent_area: float,
+                                  E_star: float, shear_to_normal: float) -> tuple[float, str, dict[str, float]]:
+    """Tangential stiffness (N/m) of the apparent contact: interface in series with the bodies (issue 15).
+
+    The patch table gives the interfacial stiffness per unit area ``K_int`` at
+    the macroscale pressure ``N / A`` (log-log interpolation, refused outside
+    the table, as :func:`tangential_stiffness_from_table`); the apparent
+    contact is ``K_int A`` in series with the bonded punch ``2 E* sqrt(A/pi)``
+    (:func:`tribolmp.models.bridges.apparent_contact_stiffness`, PHYSICS.md
+    section 8), so it never exceeds the punch.  The MDR rule ``dk_x/dk_z =
+    G*/E*`` of sticking springs scales both terms of the series alike.
+
+    Returns
+    -------
+    k_t : float
+        Tangential stiffness (N/m).
+    source : str
+        One line saying how it was obtained.
+    extra : dict
+        ``normal`` (N/m), ``bound`` (N/m, the bonded punch), ``k_int_per_area`` (N/m^3),
+        ``interface_share`` (fraction of the compliance in the interface).
+    """
+    from ..bridges import apparent_contact_stiffness, interfacial_stiffness_per_area
+
+    p = np.asarray(pressure, float)
+    area_patch = float(np.asarray(force, float)[0] / p[0])
+    kpa = interfacial_stiffness_per_area(p, np.asarray(stiffness, float), area_patch, normal_force / apparent_area)
+    app = apparent_contact_stiffness(kpa, apparent_area, E_star)
+    extra = {"normal": float(app["stiffness"]), "bound": float(app["bound"]), "k_int_per_area": float(kpa),
+             "interface_share": float(app["interface_share"])}
+    src = (f"interfacial stiffness at p = {normal_force / apparent_area:g} Pa x {apparent_area:g} m^2 in series with the "
+           "bonded punch 2E*sqrt(A/pi), times G*/E*")
+    return float(app["stiffness"] * shear_to_normal), src, extra
