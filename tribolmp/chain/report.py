@@ -150,7 +150,7 @@ def _fmt(v: Any) -> str:
 
 
 def _narrative(data: dict[str, Any]) -> list[str]:
-    """A short story of what ran, from which inputs, under which assumptions (issue 15)."""
+    """Tell what ran, from which inputs, under which assumptions (issue 15)."""
     res = data["results"]
     out: list[str] = []
     topo = res.get("topography", {}).get("values", {})
@@ -158,46 +158,66 @@ def _narrative(data: dict[str, Any]) -> list[str]:
         ri = topo["running_in"]
         fr = topo.get("friction") or {}
         eq = topo.get("eq23_mca") or {}
+        warn = " ".join(topo.get("eq23_warnings") or [])
+        k_n = ri["normal_stiffness_N_m"]
+        factor = ri["rate_factor"]
+        extra = f"; **extrapolated**: {fr.get('extrapolation')}" if fr.get("extrapolated") else ""
         out += [
-            f"- **Rates** from {topo.get('rates_source')}: Eq. 23 coefficients {topo.get('eq23_source')} at the MCA's "
-            f"V = {_fmt(eq.get('velocity_m_s'))} m/s, P = {_fmt(eq.get('pressure_Pa'))} Pa "
-            f"(k1 = {_fmt(eq.get('k1'))}, k2 = {_fmt(eq.get('k2'))} 1/m)."
-            + (" " + " ".join(topo.get("eq23_warnings") or []) if topo.get("eq23_warnings") else ""),
-            f"- **At the part** every rate is multiplied by phi V_part / V_MCA (processes scale with the distance slid "
-            f"in contact; factor {_fmt(ri['rate_factor'][0])} at the start, {_fmt(ri['rate_factor'][-1])} at the end) "
-            f"and the noise intensities by the slab thickness w = {_fmt(topo.get('slab_thickness_m'))} m "
-            f"({topo.get('slab_thickness_source')}) to go from the MCA's 1D profile to the 2D surface.",
-            f"- **Surface**: {topo.get('surface_source')}, side {_fmt(topo.get('domain_size_m'))} m; Rq "
-            f"{_fmt(topo.get('rq_initial_m'))} -> {_fmt(topo.get('rq_final_m'))} m over "
-            f"{_fmt(topo.get('sliding_distance_m'))} m of sliding in {ri.get('checkpoints')} checkpoints "
-            f"({ri.get('substeps')} Eq. 23 sub-steps, phi changing by at most the stated tolerance per sub-step).",
-            f"- **Contact** at every checkpoint: {ri.get('contact_method')} ({topo.get('contact_method_reason')}); "
+            f"- **Rates** from {topo.get('rates_source')}: Eq. 23 coefficients "
+            f"{topo.get('eq23_source')} at the MCA's V = {_fmt(eq.get('velocity_m_s'))} m/s, "
+            f"P = {_fmt(eq.get('pressure_Pa'))} Pa (k1 = {_fmt(eq.get('k1'))}, "
+            f"k2 = {_fmt(eq.get('k2'))} 1/m). {warn}".rstrip(),
+            "- **At the part** every rate is multiplied by phi V_part / V_MCA (processes scale "
+            f"with the distance slid in contact; factor {_fmt(factor[0])} at the start, "
+            f"{_fmt(factor[-1])} at the end) and the noise intensities by the slab thickness "
+            f"w = {_fmt(topo.get('slab_thickness_m'))} m ({topo.get('slab_thickness_source')}) "
+            "to go from the MCA's 1D profile to the 2D surface.",
+            f"- **Surface**: {topo.get('surface_source')}, "
+            f"side {_fmt(topo.get('domain_size_m'))} m; "
+            f"Rq {_fmt(topo.get('rq_initial_m'))} -> {_fmt(topo.get('rq_final_m'))} m over "
+            f"{_fmt(topo.get('sliding_distance_m'))} m of sliding in {ri.get('checkpoints')} "
+            f"checkpoints ({ri.get('substeps')} Eq. 23 sub-steps, phi changing by at most the "
+            "stated tolerance per sub-step).",
+            f"- **Contact** at every checkpoint: {ri.get('contact_method')} "
+            f"({topo.get('contact_method_reason')}); "
             f"real-contact fraction: {ri.get('phi_source')}.",
-            f"- **Stiffness** of the apparent contact: interfacial stiffness per area x A in series with the bonded "
-            f"punch 2E*sqrt(A/pi) = {_fmt(ri.get('bound_N_m'))} N/m (the bound); "
-            f"{_fmt(ri['normal_stiffness_N_m'][0])} -> {_fmt(ri['normal_stiffness_N_m'][-1])} N/m.",
-            f"- **Friction**: mu_k = {_fmt(fr.get('mu_kinetic'))}, mu_s = {_fmt(fr.get('mu_static'))} ({fr.get('source')}); "
-            f"matched at the {fr.get('pressure_source')} pressure {_fmt(fr.get('pressure_Pa'))} Pa"
-            + (f"; **extrapolated**: {fr.get('extrapolation')}" if fr.get("extrapolated") else "") + ".",
+            "- **Stiffness** of the apparent contact: interfacial stiffness per area x A in series "
+            f"with the bonded punch 2E*sqrt(A/pi) = {_fmt(ri.get('bound_N_m'))} N/m (the bound); "
+            f"{_fmt(k_n[0])} -> {_fmt(k_n[-1])} N/m.",
+            f"- **Friction**: mu_k = {_fmt(fr.get('mu_kinetic'))}, "
+            f"mu_s = {_fmt(fr.get('mu_static'))} "
+            f"({fr.get('source')}); matched at the {fr.get('pressure_source')} pressure "
+            f"{_fmt(fr.get('pressure_Pa'))} Pa{extra}.",
         ]
         conv = ri.get("convergence")
         if conv:
-            out.append(f"- **Convergence**: halving the checkpoint spacing ({conv['checkpoints'][0]} -> "
-                       f"{conv['checkpoints'][1]}) changes the final Rq by {_fmt(conv['rq_final_rel_change'])} and the "
-                       f"stiffness by {_fmt(conv['stiffness_final_rel_change'])} (relative).")
+            n0, n1 = conv["checkpoints"]
+            out.append(
+                f"- **Convergence**: halving the checkpoint spacing ({n0} -> {n1}) changes "
+                f"the final Rq by {_fmt(conv['rq_final_rel_change'])} and the stiffness by "
+                f"{_fmt(conv['stiffness_final_rel_change'])} (relative)."
+            )
     mac = res.get("macroscale", {}).get("values", {})
     if mac:
-        out.append(f"- **Rigid body**: contact stiffness {_fmt(mac.get('contact_stiffness_N_m'))} N/m "
-                   f"({mac.get('contact_stiffness_source')}), bound {_fmt(mac.get('contact_stiffness_bound_N_m'))} N/m; "
-                   f"{mac.get('n_slip_events')} slip events with mu_s = {_fmt(mac.get('mu_static'))}, "
-                   f"mu_k = {_fmt(mac.get('mu_kinetic'))}.")
+        out.append(
+            f"- **Rigid body**: contact stiffness {_fmt(mac.get('contact_stiffness_N_m'))} N/m "
+            f"({mac.get('contact_stiffness_source')}), bound "
+            f"{_fmt(mac.get('contact_stiffness_bound_N_m'))} N/m; {mac.get('n_slip_events')} slip "
+            f"events with mu_s = {_fmt(mac.get('mu_static'))}, "
+            f"mu_k = {_fmt(mac.get('mu_kinetic'))}."
+        )
     tri = res.get("tribospectroscopy", {}).get("values", {})
     if tri:
-        out.append(f"- **Tribospectroscopy**: length {_fmt(tri.get('length_m'))} m from {tri.get('length_source')}; "
-                   f"fitted on a simulated measurement with {_fmt(tri.get('measurement_noise_rel'))} relative noise: "
-                   f"{_fmt(tri.get('fitted_length_m'))} m, 68 % interval {tri.get('fitted_length_interval_m')} "
-                   f"({tri.get('fit_message')}).")
-    return (["", "## What ran, from which inputs, under which assumptions", ""] + out) if out else []
+        out.append(
+            f"- **Tribospectroscopy**: length {_fmt(tri.get('length_m'))} m from "
+            f"{tri.get('length_source')}; fitted on a simulated measurement with "
+            f"{_fmt(tri.get('measurement_noise_rel'))} relative noise: "
+            f"{_fmt(tri.get('fitted_length_m'))} m, 68 % interval "
+            f"{tri.get('fitted_length_interval_m')} ({tri.get('fit_message')})."
+        )
+    if not out:
+        return []
+    return ["", "## What ran, from which inputs, under which assumptions", "", *out]
 
 
 def _markdown(data: dict[str, Any]) -> str:

@@ -60,17 +60,25 @@ BEM_AREA_SLOPE = 2.0
 
 
 def _num(rates: Mapping[str, Any], key: str, *, allow_zero: bool = True) -> float | None:
-    """A finite non-negative number from ``rates`` (None when missing or null)."""
+    """Return a finite non-negative number from ``rates`` (None when missing or null)."""
     v = rates.get(key)
     if v is None:
         return None
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0 or (not allow_zero and v == 0):
-        raise ParameterError(f"rates.{key}", "a finite number " + (">= 0" if allow_zero else "> 0"), v)
+    if (
+        isinstance(v, bool)
+        or not isinstance(v, (int, float))
+        or not math.isfinite(v)
+        or v < 0
+        or (not allow_zero and v == 0)
+    ):
+        raise ParameterError(
+            f"rates.{key}", "a finite number " + (">= 0" if allow_zero else "> 0"), v
+        )
     return float(v)
 
 
 def _condition(rates: Mapping[str, Any], *keys: str) -> float | None:
-    """A condition of the MCA run: top level or inside a ``conditions`` block (C1)."""
+    """Return a condition of the MCA run: top level or inside a ``conditions`` block (C1)."""
     cond = rates.get("conditions") if isinstance(rates.get("conditions"), Mapping) else {}
     for k in keys:
         for src in (rates, cond):
@@ -80,7 +88,7 @@ def _condition(rates: Mapping[str, Any], *keys: str) -> float | None:
 
 
 def _as_mapping(rates: Any) -> Mapping[str, Any]:
-    """A plain mapping of a :class:`~tribolmp.records.Rates` record (given fields only) or a mapping."""
+    """Return a plain mapping of a Rates record (its given fields), or the mapping itself."""
     if hasattr(rates, "to_dict") and hasattr(rates, "flagged"):
         d = {k: v for k, v in rates.to_dict(with_units=False).items() if v is not None}
         d["valid"] = {k: False for k in rates.flagged}
@@ -127,7 +135,8 @@ def eq23_from_rates(rates: Any, *, fallback: Mapping[str, Any] | None = None) ->
     Parameters
     ----------
     rates : Rates or mapping
-        The :class:`~tribolmp.records.Rates` record, ``rates.json`` content or ``[rates]`` as a dict.
+        The :class:`~tribolmp.records.Rates` record, ``rates.json`` content or ``[rates]`` as a
+        dict.
     fallback : mapping, optional
         ``mu_per_s``, ``d0_m2_s``, ``dz``, ``dx_l2`` (C1 units) and ``source`` (str).
 
@@ -141,14 +150,19 @@ def eq23_from_rates(rates: Any, *, fallback: Mapping[str, Any] | None = None) ->
     """
     rates = _as_mapping(rates)
     if not isinstance(rates, Mapping):
-        raise ParameterError("rates", "a mapping (rates.json content or [rates])", type(rates).__name__)
+        raise ParameterError(
+            "rates", "a mapping (rates.json content or [rates])", type(rates).__name__
+        )
     velocity = _condition(rates, "sliding_velocity_m_s", "velocity_m_s")
     pressure = _condition(rates, "pressure_Pa")
     if velocity is None:
-        raise ParameterError("rates.sliding_velocity_m_s", "the MCA's sliding velocity (m/s) the rates were measured at",
-                             None)
+        raise ParameterError(
+            "rates.sliding_velocity_m_s",
+            "the MCA's sliding velocity (m/s) the rates were measured at",
+            None,
+        )
     warnings: list[str] = []
-    l = _num(rates, "step_length_m", allow_zero=False)
+    step = _num(rates, "step_length_m", allow_zero=False)
     valid = rates.get("valid") if isinstance(rates.get("valid"), Mapping) else {}
     names = {"mu_per_s": "mu", "d0_m2_s": "d0", "dz": "dz", "dx_l2": "dx_l2"}
     val: dict[str, float] = {}
@@ -169,11 +183,11 @@ def eq23_from_rates(rates: Any, *, fallback: Mapping[str, Any] | None = None) ->
         nu_z, nu_src = (det or 0.0) + (rea or 0.0), "detachment_rate + reattachment_rate"
     elif transfer is not None:
         nu_z, nu_src = transfer * velocity, "transfer_rate * V_MCA"
-    if l is not None:
+    if step is not None:
         if "dx_l2" not in val and "d0" in val:
-            val["dx_l2"], src["dx_l2"] = l**3 * val["d0"], "legacy l^3 D0"
+            val["dx_l2"], src["dx_l2"] = step**3 * val["d0"], "legacy l^3 D0"
         if "dz" not in val and nu_z is not None:
-            val["dz"], src["dz"] = l**3 * nu_z / 2.0, f"legacy l^3 ({nu_src}) / 2"
+            val["dz"], src["dz"] = step**3 * nu_z / 2.0, f"legacy l^3 ({nu_src}) / 2"
     wear = _num(rates, "wear_rate")
     if "mu" not in val and wear is not None:
         val["mu"], src["mu"] = wear, "legacy wear_rate"
@@ -181,41 +195,95 @@ def eq23_from_rates(rates: Any, *, fallback: Mapping[str, Any] | None = None) ->
     if fallback is not None:
         for key, short in names.items():
             if short not in val and fallback.get(key) is not None:
-                val[short], src[short] = float(fallback[key]), str(fallback.get("source", "fallback"))
+                val[short], src[short] = (
+                    float(fallback[key]),
+                    str(fallback.get("source", "fallback")),
+                )
     missing = [k for k, s in names.items() if s not in val]
     if missing:
-        raise ParameterError("rates", f"the Eq. 23 coefficients {sorted(names)} (C1), legacy fields, or a fallback",
-                             f"missing {missing}")
+        raise ParameterError(
+            "rates",
+            f"the Eq. 23 coefficients {sorted(names)} (C1), legacy fields, or a fallback",
+            f"missing {missing}",
+        )
     mu, d0, dz, dxl2 = val["mu"], val["d0"], val["dz"], val["dx_l2"]
-    fixed = (src["mu"] == "legacy wear_rate" and src["dz"].startswith("legacy") and nu_z is not None and nu_z > 0
-             and mu > 0 and abs(mu - nu_z) <= 1e-6 * max(mu, nu_z))
-    if (src["mu"] == "legacy wear_rate" and nu_src == "transfer_rate * V_MCA" and not fixed and mu > 0
-            and transfer and src["dz"].startswith("legacy")):
-        warnings.append(f"wear_rate/transfer_rate = {mu / transfer:.3g} m/s differs from V_MCA = {velocity:g} m/s: "
-                        "the two rates were measured at different velocities")
+    fixed = (
+        src["mu"] == "legacy wear_rate"
+        and src["dz"].startswith("legacy")
+        and nu_z is not None
+        and nu_z > 0
+        and mu > 0
+        and abs(mu - nu_z) <= 1e-6 * max(mu, nu_z)
+    )
+    if (
+        src["mu"] == "legacy wear_rate"
+        and nu_src == "transfer_rate * V_MCA"
+        and not fixed
+        and mu > 0
+        and transfer
+        and src["dz"].startswith("legacy")
+    ):
+        warnings.append(
+            f"wear_rate/transfer_rate = {mu / transfer:.3g} m/s differs from "
+            f"V_MCA = {velocity:g} m/s: the two rates were measured at different velocities"
+        )
     if fixed:
-        warnings.append("legacy rates: mu (wear_rate) and Dz (" + str(nu_src) + ") are the same measured number, "
-                        "so the spectrum's shape is fixed by that identity (plateau ratio 2, k2 = k1/sqrt(2), "
-                        "no k^-2 range); measure the C1 coefficients (mu_per_s, d0_m2_s, dz, dx_l2)")
+        warnings.append(
+            "legacy rates: mu (wear_rate) and Dz ("
+            + str(nu_src)
+            + ") are the same measured number, "
+            "so the spectrum's shape is fixed by that identity (plateau ratio 2, k2 = k1/sqrt(2), "
+            "no k^-2 range); measure the C1 coefficients (mu_per_s, d0_m2_s, dz, dx_l2)"
+        )
     if d0 == 0 and dxl2 > 0:
-        raise ParameterError("rates.d0_m2_s" if src["d0"] == "measured (C1)" else "rates.diffusion_m2_s",
-                             "D0 > 0 when the flux noise Dx l^2 > 0 (no stationary high-k spectrum otherwise)", 0.0)
+        raise ParameterError(
+            "rates.d0_m2_s" if src["d0"] == "measured (C1)" else "rates.diffusion_m2_s",
+            "D0 > 0 when the flux noise Dx l^2 > 0 (no stationary high-k spectrum otherwise)",
+            0.0,
+        )
     kinds = sorted(set(src.values()))
-    source = ("measured (C1)" if kinds == ["measured (C1)"]
-              else "legacy" if all(k.startswith("legacy") for k in kinds) else "mixed: " + "; ".join(
-                  f"{k}: {v}" for k, v in src.items()))
+    source = (
+        "measured (C1)"
+        if kinds == ["measured (C1)"]
+        else "legacy"
+        if all(k.startswith("legacy") for k in kinds)
+        else "mixed: " + "; ".join(f"{k}: {v}" for k, v in src.items())
+    )
     k1 = math.sqrt(mu / d0) if d0 > 0 else math.inf
     k2 = math.sqrt(dz / dxl2) if dxl2 > 0 else math.inf
     return Result(
-        mu=mu, d0=d0, dz=dz, dx_l2=dxl2, step_length_m=l, pressure_Pa=pressure, velocity_m_s=velocity,
-        k1=k1, k2=k2, source=source, sources=src, shape_fixed_by_identity=bool(fixed), warnings=warnings,
-        units={"mu": "1/s", "d0": "m^2/s", "dz": "m^3/s", "dx_l2": "m^5/s", "step_length_m": "m",
-               "pressure_Pa": "Pa", "velocity_m_s": "m/s", "k1": "1/m", "k2": "1/m"},
-        method="eq23_from_rates", message=f"Eq. 23 coefficients ({source}) at V = {velocity:g} m/s",
+        mu=mu,
+        d0=d0,
+        dz=dz,
+        dx_l2=dxl2,
+        step_length_m=step,
+        pressure_Pa=pressure,
+        velocity_m_s=velocity,
+        k1=k1,
+        k2=k2,
+        source=source,
+        sources=src,
+        shape_fixed_by_identity=bool(fixed),
+        warnings=warnings,
+        units={
+            "mu": "1/s",
+            "d0": "m^2/s",
+            "dz": "m^3/s",
+            "dx_l2": "m^5/s",
+            "step_length_m": "m",
+            "pressure_Pa": "Pa",
+            "velocity_m_s": "m/s",
+            "k1": "1/m",
+            "k2": "1/m",
+        },
+        method="eq23_from_rates",
+        message=f"Eq. 23 coefficients ({source}) at V = {velocity:g} m/s",
     )
 
 
-def rates_at_part(eq23: Mapping[str, Any], *, phi: float, velocity_m_s: float, slab_thickness_m: float) -> Result:
+def rates_at_part(
+    eq23: Mapping[str, Any], *, phi: float, velocity_m_s: float, slab_thickness_m: float
+) -> Result:
     """Eq. 23 coefficients of the part's 2D surface from the MCA's 1D ones.
 
     Assumptions (PHYSICS.md section 8):
@@ -256,19 +324,38 @@ def rates_at_part(eq23: Mapping[str, Any], *, phi: float, velocity_m_s: float, s
     """
     if not (isinstance(phi, (int, float)) and math.isfinite(phi) and 0.0 <= phi <= 1.0):
         raise ParameterError("phi", "a real-contact fraction in [0, 1]", phi)
-    if not (isinstance(velocity_m_s, (int, float)) and math.isfinite(velocity_m_s) and velocity_m_s >= 0):
+    if not (
+        isinstance(velocity_m_s, (int, float)) and math.isfinite(velocity_m_s) and velocity_m_s >= 0
+    ):
         raise ParameterError("sliding_velocity", "a finite velocity >= 0 m/s", velocity_m_s)
-    if not (isinstance(slab_thickness_m, (int, float)) and math.isfinite(slab_thickness_m) and slab_thickness_m > 0):
+    if not (
+        isinstance(slab_thickness_m, (int, float))
+        and math.isfinite(slab_thickness_m)
+        and slab_thickness_m > 0
+    ):
         raise ParameterError("slab_thickness_m", "a slab thickness > 0 m", slab_thickness_m)
     v_mca = float(eq23["velocity_m_s"])
     factor = float(phi) * float(velocity_m_s) / v_mca
     w = float(slab_thickness_m)
     return Result(
-        mu=eq23["mu"] * factor, d0=eq23["d0"] * factor, dz=eq23["dz"] * w * factor,
-        dx_l2=eq23["dx_l2"] * w * factor, factor=factor, phi=float(phi), slab_thickness_m=w,
-        units={"mu": "1/s", "d0": "m^2/s", "dz": "m^4/s", "dx_l2": "m^6/s", "factor": "1", "phi": "1",
-               "slab_thickness_m": "m"},
-        method="per-distance-in-contact", message=f"rates x phi V/V_MCA = {factor:.3g}, noise x w = {w:g} m",
+        mu=eq23["mu"] * factor,
+        d0=eq23["d0"] * factor,
+        dz=eq23["dz"] * w * factor,
+        dx_l2=eq23["dx_l2"] * w * factor,
+        factor=factor,
+        phi=float(phi),
+        slab_thickness_m=w,
+        units={
+            "mu": "1/s",
+            "d0": "m^2/s",
+            "dz": "m^4/s",
+            "dx_l2": "m^6/s",
+            "factor": "1",
+            "phi": "1",
+            "slab_thickness_m": "m",
+        },
+        method="per-distance-in-contact",
+        message=f"rates x phi V/V_MCA = {factor:.3g}, noise x w = {w:g} m",
     )
 
 
@@ -300,12 +387,18 @@ def contact_fraction_estimate(pressure_Pa: float, E_star: float, grad_rms: float
     """
     if not grad_rms > 0:
         return 1.0
-    x = 0.5 * math.sqrt(math.pi) * BEM_AREA_SLOPE * float(pressure_Pa) / (float(E_star) * float(grad_rms))
+    x = (
+        0.5
+        * math.sqrt(math.pi)
+        * BEM_AREA_SLOPE
+        * float(pressure_Pa)
+        / (float(E_star) * float(grad_rms))
+    )
     return float(min(1.0, math.erf(x)))
 
 
 def punch_bound(area_m2: float, E_star: float) -> float:
-    """Normal stiffness (N/m) of a bonded flat circular punch of area ``A``: ``2 E* sqrt(A/pi)``.
+    """Return the normal stiffness (N/m) of a bonded flat circular punch of area A, 2 E* sqrt(A/pi).
 
     No contact of apparent area ``A`` is stiffer (PHYSICS.md section 8): a
     fully bonded, perfectly flat interface is the stiffest, and the circular
@@ -313,12 +406,14 @@ def punch_bound(area_m2: float, E_star: float) -> float:
     the same area is stiffer by less than 1.5 %).
     """
     if not (area_m2 > 0 and E_star > 0):
-        raise ParameterError("area", "an apparent area > 0 m^2 and a modulus > 0 Pa", (area_m2, E_star))
+        raise ParameterError(
+            "area", "an apparent area > 0 m^2 and a modulus > 0 Pa", (area_m2, E_star)
+        )
     return 2.0 * float(E_star) * math.sqrt(float(area_m2) / math.pi)
 
 
 def apparent_contact_stiffness(k_int_per_area: float, area_m2: float, E_star: float) -> Result:
-    """Normal stiffness (N/m) of an apparent contact: interface in series with the bodies.
+    """Return the normal stiffness (N/m) of an apparent contact: interface and bodies in series.
 
     ``1/k = 1/(K_int A) + 1/k_punch``, ``k_punch = 2 E* sqrt(A/pi)``
     (PHYSICS.md section 8).  ``K_int`` (N/m^3) is the interfacial stiffness
@@ -335,16 +430,26 @@ def apparent_contact_stiffness(k_int_per_area: float, area_m2: float, E_star: fl
     """
     kp = punch_bound(area_m2, E_star)
     if not (isinstance(k_int_per_area, (int, float, np.floating)) and k_int_per_area > 0):
-        raise ParameterError("k_int_per_area", "an interfacial stiffness per area > 0 N/m^3", k_int_per_area)
+        raise ParameterError(
+            "k_int_per_area", "an interfacial stiffness per area > 0 N/m^3", k_int_per_area
+        )
     ki = float(k_int_per_area) * float(area_m2)
     c_int = 0.0 if math.isinf(ki) else 1.0 / ki
     k = 1.0 / (c_int + 1.0 / kp)
-    return Result(stiffness=k, bound=kp, interface=ki, interface_share=c_int * k,
-                  units={"stiffness": "N/m", "bound": "N/m", "interface": "N/m", "interface_share": "1"},
-                  method="series", message=f"interface {ki:.3g} N/m in series with the bonded punch {kp:.3g} N/m")
+    return Result(
+        stiffness=k,
+        bound=kp,
+        interface=ki,
+        interface_share=c_int * k,
+        units={"stiffness": "N/m", "bound": "N/m", "interface": "N/m", "interface_share": "1"},
+        method="series",
+        message=f"interface {ki:.3g} N/m in series with the bonded punch {kp:.3g} N/m",
+    )
 
 
-def interfacial_stiffness_per_area(pressures, stiffness, patch_area_m2: float, pressure_Pa: float) -> float:
+def interfacial_stiffness_per_area(
+    pressures, stiffness, patch_area_m2: float, pressure_Pa: float
+) -> float:
     """Interfacial stiffness per unit area (N/m^3) at ``pressure_Pa``, log-log interpolated.
 
     ``stiffness`` (N/m) of a periodic patch of area ``patch_area_m2`` at the
@@ -357,8 +462,11 @@ def interfacial_stiffness_per_area(pressures, stiffness, patch_area_m2: float, p
             raise ParameterError("pressure", f"the solved pressure {p[0]:g} Pa", pressure_Pa)
         return float(k[0])
     if not (p.min() * (1 - 1e-12) <= pressure_Pa <= p.max() * (1 + 1e-12)):
-        raise ParameterError("[load].normal_force", f"a nominal pressure within [{p.min():g}, {p.max():g}] Pa",
-                             f"{pressure_Pa:g} Pa")
+        raise ParameterError(
+            "[load].normal_force",
+            f"a nominal pressure within [{p.min():g}, {p.max():g}] Pa",
+            f"{pressure_Pa:g} Pa",
+        )
     o = np.argsort(p)
     return float(np.exp(np.interp(math.log(pressure_Pa), np.log(p[o]), np.log(k[o]))))
 
@@ -367,30 +475,50 @@ def interfacial_stiffness_per_area(pressures, stiffness, patch_area_m2: float, p
 
 
 def load_nanoscale_table(path: str | Path) -> list[dict[str, Any]]:
-    """Rows of ``nanoscale_table.json`` (contract C6: ``{"rows": [{pressure_Pa, sliding_velocity_m_s, mu, ...}]}``)."""
+    """Read the rows of ``nanoscale_table.json``.
+
+    Contract C6: ``{"rows": [{pressure_Pa, sliding_velocity_m_s, mu, ...}]}``.
+    """
     path = Path(path)
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError) as exc:
-        raise DataFileError(f"{path}: expected a readable JSON nanoscale table, got {' '.join(str(exc).split())}") from None
+        raise DataFileError(
+            f"{path}: expected a readable JSON nanoscale table, got {' '.join(str(exc).split())}"
+        ) from None
     rows = data.get("rows") if isinstance(data, dict) else None
     if not isinstance(rows, list) or not rows:
         raise DataFileError(f"{path}: rows: expected a non-empty list of measured conditions")
     out = []
     for i, r in enumerate(rows):
         try:
-            p, v, m = float(r["pressure_Pa"]), float(r.get("sliding_velocity_m_s", r.get("velocity_m_s"))), float(r["mu"])
+            p, v, m = (
+                float(r["pressure_Pa"]),
+                float(r.get("sliding_velocity_m_s", r.get("velocity_m_s"))),
+                float(r["mu"]),
+            )
         except (KeyError, TypeError, ValueError):
-            raise DataFileError(f"{path}: rows[{i}]: expected numbers pressure_Pa, sliding_velocity_m_s, mu") from None
+            raise DataFileError(
+                f"{path}: rows[{i}]: expected numbers pressure_Pa, sliding_velocity_m_s, mu"
+            ) from None
         if not (p > 0 and v > 0 and m >= 0 and all(map(math.isfinite, (p, v, m)))):
-            raise DataFileError(f"{path}: rows[{i}]: expected pressure_Pa > 0, sliding_velocity_m_s > 0, mu >= 0")
+            raise DataFileError(
+                f"{path}: rows[{i}]: expected pressure_Pa > 0, sliding_velocity_m_s > 0, mu >= 0"
+            )
         out.append(dict(r, pressure_Pa=p, sliding_velocity_m_s=v, mu=m))
     return out
 
 
-def friction_at_part(rows: Sequence[Mapping[str, Any]], *, pressure_Pa: float, velocity_m_s: float,
-                     mu_static: float | None = None, mu_kinetic: float | None = None,
-                     static_ratio: float = 1.0, pressure_source: str = "nominal") -> Result:
+def friction_at_part(
+    rows: Sequence[Mapping[str, Any]],
+    *,
+    pressure_Pa: float,
+    velocity_m_s: float,
+    mu_static: float | None = None,
+    mu_kinetic: float | None = None,
+    static_ratio: float = 1.0,
+    pressure_source: str = "nominal",
+) -> Result:
     """Friction coefficients at the MCA condition that matches the part's.
 
     Rule (stated in the report):
@@ -437,8 +565,11 @@ def friction_at_part(rows: Sequence[Mapping[str, Any]], *, pressure_Pa: float, v
     if not (static_ratio >= 1.0 and math.isfinite(static_ratio)):
         raise ParameterError("[running_in].static_ratio", "a ratio mu_s/mu_k >= 1", static_ratio)
     if not (pressure_Pa > 0 and velocity_m_s > 0):
-        raise ParameterError("pressure, velocity", "a matching pressure > 0 Pa and a velocity > 0 m/s",
-                             (pressure_Pa, velocity_m_s))
+        raise ParameterError(
+            "pressure, velocity",
+            "a matching pressure > 0 Pa and a velocity > 0 m/s",
+            (pressure_Pa, velocity_m_s),
+        )
     P = np.array([float(r["pressure_Pa"]) for r in rows])
     V = np.array([float(r["sliding_velocity_m_s"]) for r in rows])
     M = np.array([float(r["mu"]) for r in rows])
@@ -462,24 +593,46 @@ def friction_at_part(rows: Sequence[Mapping[str, Any]], *, pressure_Pa: float, v
     mu_k = float(mu_kinetic) if mu_kinetic is not None else mu
     mu_s = float(mu_static) if mu_static is not None else static_ratio * mu_k
     if mu_s < mu_k:
-        raise ParameterError("[running_in].mu_static", f"a static coefficient >= mu_kinetic ({mu_k:g})", mu_s)
+        raise ParameterError(
+            "[running_in].mu_static", f"a static coefficient >= mu_kinetic ({mu_k:g})", mu_s
+        )
     why = []
     if p_out:
-        why.append(f"pressure {pressure_Pa:.3g} Pa ({pressure_source}) outside the measured "
-                   f"[{p_sel[0]:.3g}, {p_sel[-1]:.3g}] Pa")
+        why.append(
+            f"pressure {pressure_Pa:.3g} Pa ({pressure_source}) outside the measured "
+            f"[{p_sel[0]:.3g}, {p_sel[-1]:.3g}] Pa"
+        )
     if v_out:
         why.append(f"velocity {velocity_m_s:g} m/s vs measured {v_near:g} m/s")
-    src_k = "scene [running_in].mu_kinetic" if mu_kinetic is not None else f"MCA at {v_near:g} m/s, interpolated in log p"
-    src_s = ("scene [running_in].mu_static" if mu_static is not None
-             else f"{static_ratio:g} x mu_k (scene [running_in].static_ratio)")
+    src_k = (
+        "scene [running_in].mu_kinetic"
+        if mu_kinetic is not None
+        else f"MCA at {v_near:g} m/s, interpolated in log p"
+    )
+    src_s = (
+        "scene [running_in].mu_static"
+        if mu_static is not None
+        else f"{static_ratio:g} x mu_k (scene [running_in].static_ratio)"
+    )
     return Result(
-        mu=mu, mu_kinetic=mu_k, mu_static=mu_s, extrapolated=extrapolated, extrapolation="; ".join(why),
-        matched=[{"pressure_Pa": float(p), "sliding_velocity_m_s": float(v_near), "mu": float(m)} for p, m in zip(p_sel, m_sel)],
-        velocity_table=vt, pressure_Pa=float(pressure_Pa), pressure_source=pressure_source,
+        mu=mu,
+        mu_kinetic=mu_k,
+        mu_static=mu_s,
+        extrapolated=extrapolated,
+        extrapolation="; ".join(why),
+        matched=[
+            {"pressure_Pa": float(p), "sliding_velocity_m_s": float(v_near), "mu": float(m)}
+            for p, m in zip(p_sel, m_sel)
+        ],
+        velocity_table=vt,
+        pressure_Pa=float(pressure_Pa),
+        pressure_source=pressure_source,
         source=f"mu_k: {src_k}; mu_s: {src_s}",
         units={"mu": "1", "mu_kinetic": "1", "mu_static": "1", "pressure_Pa": "Pa"},
         method="nearest-velocity, log-pressure interpolation",
-        message=("extrapolated: " + "; ".join(why)) if extrapolated else "within the measured conditions",
+        message=("extrapolated: " + "; ".join(why))
+        if extrapolated
+        else "within the measured conditions",
     )
 
 

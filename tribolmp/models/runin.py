@@ -85,14 +85,22 @@ class RunInParams:
     duration: float = param(0.05, unit="s", lo=0.0, lo_open=True, doc="Sliding time.")
     velocity: float = param(0.01, unit="m/s", lo=0.0, doc="Sliding velocity of the part.")
     normal_force: float = param(10.0, unit="N", lo=0.0, lo_open=True, doc="Normal load.")
-    apparent_area: float = param(1e-6, unit="m^2", lo=0.0, lo_open=True, doc="Apparent contact area.")
+    apparent_area: float = param(
+        1e-6, unit="m^2", lo=0.0, lo_open=True, doc="Apparent contact area."
+    )
     modulus: float = param(1.13e11, unit="Pa", lo=0.0, lo_open=True, doc="Effective modulus E*.")
     checkpoints: int = param(8, lo=1, hi=10_000, doc="Equal intervals of the duration.")
-    slab_thickness: float = param(2.5e-9, unit="m", lo=0.0, lo_open=True, doc="MCA slab thickness w.")
-    contact_method: str = param("mdr", choices=("mdr", "bem"), doc="Contact model at the checkpoints.")
+    slab_thickness: float = param(
+        2.5e-9, unit="m", lo=0.0, lo_open=True, doc="MCA slab thickness w."
+    )
+    contact_method: str = param(
+        "mdr", choices=("mdr", "bem"), doc="Contact model at the checkpoints."
+    )
     realizations: int = param(16, lo=1, hi=100_000, doc="MDR ensemble size.")
     contact_seed: int = param(0, lo=0, hi=2**63 - 1, doc="Seed of the MDR ensemble.")
-    phi_tolerance: float = param(0.05, lo=0.0, lo_open=True, doc="Largest relative change of phi per sub-step.")
+    phi_tolerance: float = param(
+        0.05, lo=0.0, lo_open=True, doc="Largest relative change of phi per sub-step."
+    )
 
     def __post_init__(self) -> None:
         validate_dataclass(self)
@@ -103,10 +111,19 @@ class RunInParams:
         return self.normal_force / self.apparent_area
 
 
-def part_surface(*, rms_height: float, hurst: float, rolloff_wavelength: float, short_cutoff_wavelength: float,
-                 grid_points: int, pixel_size: float, rng: np.random.Generator, surface_file: str = "",
-                 rescale: bool = True) -> tuple[np.ndarray, float, str]:
-    """The part's initial surface: a named height map, or ``[roughness]`` at its physical size and pixel.
+def part_surface(
+    *,
+    rms_height: float,
+    hurst: float,
+    rolloff_wavelength: float,
+    short_cutoff_wavelength: float,
+    grid_points: int,
+    pixel_size: float,
+    rng: np.random.Generator,
+    surface_file: str = "",
+    rescale: bool = True,
+) -> tuple[np.ndarray, float, str]:
+    """Return the part's initial surface: a height map, or ``[roughness]`` at its size and pixel.
 
     A generated surface is one Gaussian realisation of the self-affine PSD of
     the contact model (:func:`tribolmp.models.contact.rough.self_affine_psd`)
@@ -127,19 +144,35 @@ def part_surface(*, rms_height: float, hurst: float, rolloff_wavelength: float, 
         h, dx = load_surface(surface_file)
         dx = pixel_size if dx is None else dx
         if h.shape[0] != h.shape[1] or h.shape[0] % 2:
-            raise ParameterError("[roughness].surface_file", "a square height map with an even side", f"shape {h.shape}")
+            raise ParameterError(
+                "[roughness].surface_file",
+                "a square height map with an even side",
+                f"shape {h.shape}",
+            )
         return h, float(dx), f"height map {surface_file}"
     psd = self_affine_psd(rms_height, hurst, rolloff_wavelength, short_cutoff_wavelength)
     h = generate_surface(grid_points, pixel_size, psd, rng)
     if rescale:
         h = (h - h.mean()) * (rms_height / float(np.sqrt(np.mean((h - h.mean()) ** 2))))
-    return h, float(pixel_size), f"random [roughness] surface {grid_points}^2 x {pixel_size:g} m" + (
-        ", Rq rescaled to rms_height" if rescale else "")
+    return (
+        h,
+        float(pixel_size),
+        f"random [roughness] surface {grid_points}^2 x {pixel_size:g} m"
+        + (", Rq rescaled to rms_height" if rescale else ""),
+    )
 
 
-def contact_at_load(h: np.ndarray, dx: float, *, modulus: float, pressure: float, method: str, realizations: int,
-                    seed: int) -> dict[str, Any]:
-    """Interfacial stiffness per area and real-contact fraction of a periodic patch at one nominal pressure.
+def contact_at_load(
+    h: np.ndarray,
+    dx: float,
+    *,
+    modulus: float,
+    pressure: float,
+    method: str,
+    realizations: int,
+    seed: int,
+) -> dict[str, Any]:
+    """Solve a periodic patch at one nominal pressure: stiffness per area, contact fraction.
 
     ``method = "bem"``: the periodic BEM (contract C5
     ``tribolmp.models.contact.interfacial_stiffness`` when installed, else
@@ -164,7 +197,10 @@ def contact_at_load(h: np.ndarray, dx: float, *, modulus: float, pressure: float
             interfacial_stiffness = None
         if interfacial_stiffness is not None:
             r = interfacial_stiffness(h, dx, modulus, [pressure])
-            kpa, area = float(np.asarray(r["stiffness_per_area"])[0]), float(np.asarray(r["area_fraction"])[0])
+            kpa, area = (
+                float(np.asarray(r["stiffness_per_area"])[0]),
+                float(np.asarray(r["area_fraction"])[0]),
+            )
         else:
             from .contact.bem import solve_bem
 
@@ -174,16 +210,29 @@ def contact_at_load(h: np.ndarray, dx: float, *, modulus: float, pressure: float
     elif method == "mdr":
         from .contact.solve import solve_rough
 
-        r = solve_rough(h, dx, modulus, [pressure], method="mdr", realizations=realizations,
-                        rng=np.random.default_rng(seed))
+        r = solve_rough(
+            h,
+            dx,
+            modulus,
+            [pressure],
+            method="mdr",
+            realizations=realizations,
+            rng=np.random.default_rng(seed),
+        )
         kpa = float(np.asarray(r["stiffness"])[0]) / patch
         area = None
         phi = bridges.contact_fraction_estimate(pressure, modulus, grad)
         src = "estimate kappa p/(E* |grad h|_rms), kappa = 2 (MDR gives no area)"
     else:
         raise ParameterError("contact_method", "one of ['mdr', 'bem']", method)
-    return {"k_per_area": kpa, "area_fraction": area, "phi": phi, "phi_source": src, "grad_rms": grad,
-                "time_s": time.perf_counter() - t0}
+    return {
+        "k_per_area": kpa,
+        "area_fraction": area,
+        "phi": phi,
+        "phi_source": src,
+        "grad_rms": grad,
+        "time_s": time.perf_counter() - t0,
+    }
 
 
 def _radial(s_grid: np.ndarray, n: int, dx: float) -> tuple[np.ndarray, np.ndarray]:
@@ -193,9 +242,17 @@ def _radial(s_grid: np.ndarray, n: int, dx: float) -> tuple[np.ndarray, np.ndarr
     return k, avg
 
 
-def running_in(h0: np.ndarray, pixel_size: float, eq23: Mapping[str, Any], params: RunInParams, *,
-               rng: np.random.Generator, mu_of_phi: Callable[[float], float] | None = None,
-               correlation_length: float = 0.0, keep_surfaces: bool = False) -> Result:
+def running_in(
+    h0: np.ndarray,
+    pixel_size: float,
+    eq23: Mapping[str, Any],
+    params: RunInParams,
+    *,
+    rng: np.random.Generator,
+    mu_of_phi: Callable[[float], float] | None = None,
+    correlation_length: float = 0.0,
+    keep_surfaces: bool = False,
+) -> Result:
     """Evolve the part's surface by Eq. 23 over the sliding duration, coupled to the contact.
 
     Parameters
@@ -248,9 +305,18 @@ def running_in(h0: np.ndarray, pixel_size: float, eq23: Mapping[str, Any], param
     bound = bridges.punch_bound(area, params.modulus)
 
     def record(hh):
-        c = contact_at_load(hh, dx, modulus=params.modulus, pressure=params.pressure, method=params.contact_method,
-                            realizations=params.realizations, seed=params.contact_seed)
-        c["k"] = bridges.apparent_contact_stiffness(c["k_per_area"], area, params.modulus)["stiffness"]
+        c = contact_at_load(
+            hh,
+            dx,
+            modulus=params.modulus,
+            pressure=params.pressure,
+            method=params.contact_method,
+            realizations=params.realizations,
+            seed=params.contact_seed,
+        )
+        c["k"] = bridges.apparent_contact_stiffness(c["k_per_area"], area, params.modulus)[
+            "stiffness"
+        ]
         return c
 
     s_theory = spectra.periodogram(h, dx, 2)
@@ -270,11 +336,23 @@ def running_in(h0: np.ndarray, pixel_size: float, eq23: Mapping[str, Any], param
         psd_th.append(s_t)
         if keep_surfaces:
             surfaces.append(h.copy())
-        part = bridges.rates_at_part(eq23, phi=c["phi"], velocity_m_s=params.velocity,
-                                     slab_thickness_m=params.slab_thickness)
-        rows.append({"time_s": i * dt, "rq": rq, "k": c["k"], "kpa": c["k_per_area"], "area": c["area_fraction"], "phi": c["phi"],
-                         "phi_source": c["phi_source"], "factor": part["factor"], "grad": c["grad_rms"],
-                         "mu": None if mu_of_phi is None else float(mu_of_phi(c["phi"]))})
+        part = bridges.rates_at_part(
+            eq23, phi=c["phi"], velocity_m_s=params.velocity, slab_thickness_m=params.slab_thickness
+        )
+        rows.append(
+            {
+                "time_s": i * dt,
+                "rq": rq,
+                "k": c["k"],
+                "kpa": c["k_per_area"],
+                "area": c["area_fraction"],
+                "phi": c["phi"],
+                "phi_source": c["phi_source"],
+                "factor": part["factor"],
+                "grad": c["grad_rms"],
+                "mu": None if mu_of_phi is None else float(mu_of_phi(c["phi"])),
+            }
+        )
         if i == N:
             break
         t1 = time.perf_counter()
@@ -284,16 +362,36 @@ def running_in(h0: np.ndarray, pixel_size: float, eq23: Mapping[str, Any], param
         cal = c["phi"] / est0 if est0 > 0 else 1.0
 
         def phi_of(hh, cal=cal):
-            return min(1.0, cal * bridges.contact_fraction_estimate(params.pressure, params.modulus,
-                                                                    bridges.rms_gradient(hh, dx)))
+            return min(
+                1.0,
+                cal
+                * bridges.contact_fraction_estimate(
+                    params.pressure, params.modulus, bridges.rms_gradient(hh, dx)
+                ),
+            )
 
         left, sub, phi_now = dt, sub_size or dt, c["phi"]
         while left > 1e-12 * dt:
             step = min(sub, left)
-            part = bridges.rates_at_part(eq23, phi=phi_now, velocity_m_s=params.velocity,
-                                         slab_thickness_m=params.slab_thickness)
-            tp = TopographyParams(dim=2, n=n, dx=dx, d0=part["d0"], dx_noise=part["dx_l2"], dz=part["dz"],
-                                  mu=part["mu"], l=1.0, correlation_length=correlation_length, dt=step, steps=1)
+            part = bridges.rates_at_part(
+                eq23,
+                phi=phi_now,
+                velocity_m_s=params.velocity,
+                slab_thickness_m=params.slab_thickness,
+            )
+            tp = TopographyParams(
+                dim=2,
+                n=n,
+                dx=dx,
+                d0=part["d0"],
+                dx_noise=part["dx_l2"],
+                dz=part["dz"],
+                mu=part["mu"],
+                l=1.0,
+                correlation_length=correlation_length,
+                dt=step,
+                steps=1,
+            )
             h_try = np.asarray(evolve(tp, rng=rng, h0=h).h)
             phi_try = phi_of(h_try)
             change = abs(phi_try - phi_now) / max(phi_now, 1e-300)
@@ -304,10 +402,25 @@ def running_in(h0: np.ndarray, pixel_size: float, eq23: Mapping[str, Any], param
             # Corrector (Heun in phi): redo the step with the mean of the fractions at its two ends,
             # so the coupling error is second order in the sub-step.
             phi_mid = 0.5 * (phi_now + phi_try)
-            part = bridges.rates_at_part(eq23, phi=phi_mid, velocity_m_s=params.velocity,
-                                         slab_thickness_m=params.slab_thickness)
-            tp = TopographyParams(dim=2, n=n, dx=dx, d0=part["d0"], dx_noise=part["dx_l2"], dz=part["dz"],
-                                  mu=part["mu"], l=1.0, correlation_length=correlation_length, dt=step, steps=1)
+            part = bridges.rates_at_part(
+                eq23,
+                phi=phi_mid,
+                velocity_m_s=params.velocity,
+                slab_thickness_m=params.slab_thickness,
+            )
+            tp = TopographyParams(
+                dim=2,
+                n=n,
+                dx=dx,
+                d0=part["d0"],
+                dx_noise=part["dx_l2"],
+                dz=part["dz"],
+                mu=part["mu"],
+                l=1.0,
+                correlation_length=correlation_length,
+                dt=step,
+                steps=1,
+            )
             h = np.asarray(evolve(tp, rng=rng, h0=h).h)
             # Expectation of the periodogram under the same piecewise-constant coefficients.
             s_theory = expected_periodogram(tp, step, lattice=False, s0=s_theory)
@@ -331,27 +444,68 @@ def running_in(h0: np.ndarray, pixel_size: float, eq23: Mapping[str, Any], param
         rms_gradient=[r["grad"] for r in rows],
         rate_factor=[r["factor"] for r in rows],
         mu=[r["mu"] for r in rows],
-        k=k_r, psd=np.array(psd), psd_theory=np.array(psd_th),
-        h=h, pixel_size_m=dx, theory_grid=s_theory, stationary_grid=stationary, topography_params=tp,
+        k=k_r,
+        psd=np.array(psd),
+        psd_theory=np.array(psd_th),
+        h=h,
+        pixel_size_m=dx,
+        theory_grid=s_theory,
+        stationary_grid=stationary,
+        topography_params=tp,
         surfaces=surfaces if keep_surfaces else None,
-        bound_N_m=bound, rq_initial_m=rows[0]["rq"], rq_final_m=rows[-1]["rq"], domain_size_m=n * dx,
-        contact_method=params.contact_method, checkpoints=N, substeps=substeps, rejected_substeps=rejected,
-        contact_time_s=contact_time, topography_time_s=topo_time, nit=N,
+        bound_N_m=bound,
+        rq_initial_m=rows[0]["rq"],
+        rq_final_m=rows[-1]["rq"],
+        domain_size_m=n * dx,
+        contact_method=params.contact_method,
+        checkpoints=N,
+        substeps=substeps,
+        rejected_substeps=rejected,
+        contact_time_s=contact_time,
+        topography_time_s=topo_time,
+        nit=N,
         method=f"coupled Eq. 23 (exact OU) + {params.contact_method}",
-        units={"sliding_distance_m": "m", "sliding_time_s": "s", "rq_m": "m", "normal_stiffness_N_m": "N/m",
-               "stiffness_per_area_N_m3": "N/m^3", "real_area_fraction": "1", "phi": "1", "rate_factor": "1",
-               "mu": "1", "k": "1/m", "psd": "m^4", "psd_theory": "m^4", "h": "m", "bound_N_m": "N/m",
-               "rq_initial_m": "m", "rq_final_m": "m", "domain_size_m": "m", "pixel_size_m": "m"},
+        units={
+            "sliding_distance_m": "m",
+            "sliding_time_s": "s",
+            "rq_m": "m",
+            "normal_stiffness_N_m": "N/m",
+            "stiffness_per_area_N_m3": "N/m^3",
+            "real_area_fraction": "1",
+            "phi": "1",
+            "rate_factor": "1",
+            "mu": "1",
+            "k": "1/m",
+            "psd": "m^4",
+            "psd_theory": "m^4",
+            "h": "m",
+            "bound_N_m": "N/m",
+            "rq_initial_m": "m",
+            "rq_final_m": "m",
+            "domain_size_m": "m",
+            "pixel_size_m": "m",
+        },
     )
-    out.message = (f"{N} checkpoints over {params.duration:g} s ({params.velocity * params.duration:g} m slid): "
-                   f"Rq {out.rq_initial_m:.3g} -> {out.rq_final_m:.3g} m, k {rows[0]['k']:.3g} -> {rows[-1]['k']:.3g} N/m "
-                   f"(bound {bound:.3g} N/m)")
+    out.message = (
+        f"{N} checkpoints over {params.duration:g} s "
+        f"({params.velocity * params.duration:g} m slid): Rq {out.rq_initial_m:.3g} -> "
+        f"{out.rq_final_m:.3g} m, k {rows[0]['k']:.3g} -> {rows[-1]['k']:.3g} N/m "
+        f"(bound {bound:.3g} N/m)"
+    )
     out.time_s = time.perf_counter() - t0
     return out
 
 
-def checkpoint_convergence(h0: np.ndarray, pixel_size: float, eq23: Mapping[str, Any], params: RunInParams, *,
-                           seed: int, coarse: Result | None = None, **kwargs: Any) -> Result:
+def checkpoint_convergence(
+    h0: np.ndarray,
+    pixel_size: float,
+    eq23: Mapping[str, Any],
+    params: RunInParams,
+    *,
+    seed: int,
+    coarse: Result | None = None,
+    **kwargs: Any,
+) -> Result:
     """Relative change of the final Rq and stiffness when the checkpoint spacing is halved.
 
     Runs :func:`running_in` with ``checkpoints`` and ``2 checkpoints`` from the
@@ -371,12 +525,26 @@ def checkpoint_convergence(h0: np.ndarray, pixel_size: float, eq23: Mapping[str,
 
     if coarse is None:
         coarse = running_in(h0, pixel_size, eq23, params, rng=np.random.default_rng(seed), **kwargs)
-    fine = running_in(h0, pixel_size, eq23, replace(params, checkpoints=2 * params.checkpoints),
-                      rng=np.random.default_rng(seed), **kwargs)
+    fine = running_in(
+        h0,
+        pixel_size,
+        eq23,
+        replace(params, checkpoints=2 * params.checkpoints),
+        rng=np.random.default_rng(seed),
+        **kwargs,
+    )
     drq = abs(fine.rq_final_m - coarse.rq_final_m) / fine.rq_final_m
-    dk = abs(fine.normal_stiffness_N_m[-1] - coarse.normal_stiffness_N_m[-1]) / fine.normal_stiffness_N_m[-1]
-    return Result(rq_delta=drq, stiffness_delta=dk, coarse=coarse, fine=fine,
-                  checkpoints=(params.checkpoints, 2 * params.checkpoints),
-                  units={"rq_delta": "1", "stiffness_delta": "1"},
-                  message=f"halving the spacing ({params.checkpoints} -> {2 * params.checkpoints}): "
-                          f"final Rq changes by {drq:.2e}, stiffness by {dk:.2e}")
+    dk = (
+        abs(fine.normal_stiffness_N_m[-1] - coarse.normal_stiffness_N_m[-1])
+        / fine.normal_stiffness_N_m[-1]
+    )
+    return Result(
+        rq_delta=drq,
+        stiffness_delta=dk,
+        coarse=coarse,
+        fine=fine,
+        checkpoints=(params.checkpoints, 2 * params.checkpoints),
+        units={"rq_delta": "1", "stiffness_delta": "1"},
+        message=f"halving the spacing ({params.checkpoints} -> {2 * params.checkpoints}): "
+        f"final Rq changes by {drq:.2e}, stiffness by {dk:.2e}",
+    )

@@ -82,7 +82,7 @@ def _draw_runin_mu(ax, result, run) -> None:
 
 
 def running_in_mode(scene) -> bool:
-    """True when the topography stage evolves the part's own surface (rough geometry with [roughness])."""
+    """Say whether the topography stage evolves the part's own surface (rough, with [roughness])."""
     return scene.topography is not None and scene.roughness is not None and scene.geometry.profile == "rough"
 
 
@@ -216,7 +216,7 @@ class Topography(Stage):
 
 
 def _fallback_from_topography(scene, slab: float) -> dict:
-    """The scene's ``[topography]`` Eq. 23 values in the 1D C1 names (for coefficients the MCA did not measure)."""
+    """Return the scene's ``[topography]`` Eq. 23 values in the 1D C1 names (not measured by the MCA)."""
     from ...models.topography.rates import topography_fallback
     from ...scene.schema import Topography as TopoSection
 
@@ -224,7 +224,7 @@ def _fallback_from_topography(scene, slab: float) -> dict:
 
 
 def _running_in(ctx: StageContext) -> StageOutput:
-    """The part's [roughness] surface runs in by Eq. 23, coupled to the contact (issue 15)."""
+    """Run in the part's [roughness] surface by Eq. 23, coupled to the contact (issue 15)."""
     from ...environment import data_path
     from ...jsonio import atomic_write_json, jsonable
     from ...models import bridges, runin

@@ -64,9 +64,11 @@ def tangential_stiffness_from_table(
     return k_t, f"contact stage at p = {p_macro:g} Pa over {apparent_area:g} m^2, times G*/E*"
 
 
-def apparent_tangential_stiffness(pressure, stiffness, force, *, normal_force: float, apparent_area: float,
-                                  E_star: float, shear_to_normal: float) -> tuple[float, str, dict[str, float]]:
-    """Tangential stiffness (N/m) of the apparent contact: interface in series with the bodies (issue 15).
+def apparent_tangential_stiffness(
+    pressure, stiffness, force, *, normal_force: float, apparent_area: float, E_star: float,
+    shear_to_normal: float,
+) -> tuple[float, str, dict[str, float]]:
+    """Tangential stiffness (N/m) of the apparent contact: interface and bodies in series.
 
     The patch table gives the interfacial stiffness per unit area ``K_int`` at
     the macroscale pressure ``N / A`` (log-log interpolation, refused outside
@@ -90,10 +92,11 @@ def apparent_tangential_stiffness(pressure, stiffness, force, *, normal_force: f
 
     p = np.asarray(pressure, float)
     area_patch = float(np.asarray(force, float)[0] / p[0])
-    kpa = interfacial_stiffness_per_area(p, np.asarray(stiffness, float), area_patch, normal_force / apparent_area)
+    p_macro = normal_force / apparent_area
+    kpa = interfacial_stiffness_per_area(p, np.asarray(stiffness, float), area_patch, p_macro)
     app = apparent_contact_stiffness(kpa, apparent_area, E_star)
-    extra = {"normal": float(app["stiffness"]), "bound": float(app["bound"]), "k_int_per_area": float(kpa),
-             "interface_share": float(app["interface_share"])}
-    src = (f"interfacial stiffness at p = {normal_force / apparent_area:g} Pa x {apparent_area:g} m^2 in series with the "
-           "bonded punch 2E*sqrt(A/pi), times G*/E*")
+    extra = {"normal": float(app["stiffness"]), "bound": float(app["bound"]),
+             "k_int_per_area": float(kpa), "interface_share": float(app["interface_share"])}
+    src = (f"interfacial stiffness at p = {p_macro:g} Pa x {apparent_area:g} m^2 in series with "
+           "the bonded punch 2E*sqrt(A/pi), times G*/E*")
     return float(app["stiffness"] * shear_to_normal), src, extra
