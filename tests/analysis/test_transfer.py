@@ -107,3 +107,48 @@ def test_count_events_by_hand():
     np.testing.assert_array_equal(ev["reattach"], [1, 2])
     np.testing.assert_array_equal(ev["transfer"], [1, 1])
     np.testing.assert_array_equal(ev["returned"], [0, 1])
+
+
+def _linked_run(out, with_links: bool):
+    """Write and analyse rigid bodies whose two lower automata weld to the upper body at frame 10.
+
+    The lower body rests, the upper body and slider move at V; from frame 10 on, two lower-body automata
+    have all their links to the upper body while still moving with the lower body.
+    """
+    from tribolmp.analysis.synthetic import write_dump, write_meta
+
+    d, n_row, V, dt_ns = 2.5, 10, 10.0, 0.1
+    rows = [(0.5 * d, 1), (1.5 * d, 2), (2.5 * d, 2), (3.5 * d, 3), (4.5 * d, 3), (5.5 * d, 4)]
+    h = np.concatenate([np.full(n_row, y) for y, _ in rows])
+    mol = np.concatenate([np.full(n_row, m) for _, m in rows])
+    x0 = np.tile((np.arange(n_row) + 0.5) * d, len(rows))
+    moving = mol >= 3
+    welded = np.nonzero(mol == 2)[0][-2:]
+    frames = []
+    for k in range(30):
+        x = np.mod(x0 + np.where(moving, V * dt_ns * k, 0.0), n_row * d)
+        cross = np.zeros(h.size, dtype=int)
+        if k >= 10:
+            cross[welded] = 4
+        extra = {"f_mca_state[8]": np.full(h.size, 4), "f_mca_state[9]": cross} if with_links else None
+        frames.append(dict(step=1000 * k, box=np.array([[0, n_row * d], [0, 6 * d], [-0.5, 0.5]]), mol=mol,
+                           pos=np.column_stack([x, h, np.zeros(h.size)]),
+                           vel=np.column_stack([np.where(moving, V, 0.0), np.zeros(h.size), np.zeros(h.size)]),
+                           radius=d / 2, nbond=4, extra=extra))
+    write_dump(out / "traj.lammpstrj", frames)
+    write_meta(out, dt_s=1e-13, dump_interval_steps=1000, velocity_m_s=V, diameter_m=d * 1e-9,
+               box_m=frames[0]["box"] * 1e-9)
+    meta = read_meta(out)
+    return MassTransfer(open_trajectory(out, meta), meta, window=1).run().results
+
+
+def test_links_to_the_other_body_are_membership(tmp_path):
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    # with the mca law's per-automaton link columns: the two welded automata are members of the upper body
+    r = _linked_run(tmp_path / "a", with_links=True)
+    assert r.membership_source.startswith("velocity and links")
+    assert r.transfer_events == 2 and r.wear_lower == 2 and r.wear_upper == -2
+    # without them only the velocity decides: nothing moved, nothing transferred
+    r0 = _linked_run(tmp_path / "b", with_links=False)
+    assert r0.membership_source == "velocity" and r0.transfer_events == 0

@@ -64,6 +64,11 @@ MOL_BASE, MOL_LOWER, MOL_UPPER, MOL_SLIDER = 1, 2, 3, 4
 
 #: Columns the analyses read besides positions and velocities.
 _EXTRA_COLUMNS = ["mol", "radius", "c_nbond"]
+#: Optional per-automaton columns of the mca law (contract C2, ``fix mca_state``): its links, and its links
+#: to automata of another body.  Read when the dump has them (any of the spellings).
+LINK_COLUMNS = {"n_links": ("f_mca_state[8]", "n_links"),
+                "n_cross_body_links": ("f_mca_state[9]", "n_cross_body_links", "c_ncross")}
+_EXTRA_COLUMNS += [name for names in LINK_COLUMNS.values() for name in names]
 
 # meta.json key -> accepted spellings (first is canonical).  Both sides of the
 # contract are written in parallel, so the reader accepts the obvious variants

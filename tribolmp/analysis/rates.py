@@ -125,8 +125,9 @@ DEFINITIONS = {
                        "log-slope over the fit window is within 0.8-1.2 and its rms exceeds one automaton diameter; "
                        "else null (diffusion_exponent, diffusion_reason)"),
     "transfer_events": ("membership changes of body automata into the other body; membership = the velocity state "
-                        "(lower < V/3 < layer < 2V/3 < upper, velocity averaged over transfer_window_frames) of the "
-                        "latest run lasting >= transfer_persistence_s"),
+                        "(lower < V/3 < layer < 2V/3 < upper, velocity averaged over transfer_window_frames; the "
+                        "other body's state when the dump's mca-law columns show most of the automaton's links "
+                        "going to the other body) of the latest run lasting >= transfer_persistence_s"),
     "transfer_per_s, transfer_per_m": "transfer_events per analysed second / per metre slid; errors sqrt(n) (>= 1 event)",
     "transfer_rate": "transfer_events per surface automaton per metre slid",
     "cross_body_links_formed": ("links formed between automata of different bodies (different molecule ids) over the "
@@ -417,6 +418,7 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
         "transfer_rate": get(mt, "transfer_rate"),
         "transfer_rate_err": get(mt, "transfer_rate_err"),
         "transfer_persistence_s": get(mt, "persistence_s"),
+        "transfer_membership_source": None if mt is None else str(mt.membership_source),
         "net_transfer_lower_to_upper": None if mt is None else int(mt.net_transfer_lower_to_upper),
         **cb,
         **{k: get(mt, k) for k in ("wear_lower_per_s", "wear_lower_per_s_err", "wear_lower_per_m",

@@ -47,7 +47,9 @@ def write_dump(path, frames) -> Path:
     frames : iterable of dict
         Keys ``step`` (int), ``box`` ((3, 2) bounds, nm), ``mol`` (N,),
         ``pos`` ((N, 3), nm), ``vel`` ((N, 3), nm/ns), ``radius`` (N,) nm,
-        ``nbond`` (N,); optional ``type`` (N,) and ``id`` (N,) (default 1..N).
+        ``nbond`` (N,); optional ``type`` (N,), ``id`` (N,) (default 1..N) and
+        ``extra`` (dict column name -> (N,) integers, appended after the MCA
+        columns, e.g. the mca law's per-automaton links to the other body).
     """
     path = Path(path)
     with path.open("w") as fh:
@@ -62,12 +64,13 @@ def write_dump(path, frames) -> Path:
             fh.write("ITEM: BOX BOUNDS pp ff pp\n")
             for lo, hi in box:
                 fh.write(f"{lo:.6f} {hi:.6f}\n")
-            fh.write("ITEM: ATOMS " + " ".join(DUMP_COLUMNS) + "\n")
+            extra = fr.get("extra") or {}
+            fh.write("ITEM: ATOMS " + " ".join(DUMP_COLUMNS + tuple(extra)) + "\n")
             table = np.column_stack(
                 [ids, mol, typ, pos, np.asarray(fr["vel"], dtype=float), np.broadcast_to(fr["radius"], (n,)),
-                 np.broadcast_to(fr["nbond"], (n,))]
+                 np.broadcast_to(fr["nbond"], (n,))] + [np.broadcast_to(v, (n,)) for v in extra.values()]
             )
-            np.savetxt(fh, table, fmt=_FMT)
+            np.savetxt(fh, table, fmt=_FMT + " %d" * len(extra))
     return path
 
 

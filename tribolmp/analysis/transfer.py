@@ -46,7 +46,7 @@ from MDAnalysis.analysis.base import AnalysisBase
 from ..errors import DataFileError
 from ..params import check_int, check_range
 from .diffusion import Unwrapper, surface_selection
-from .outputs import MOL_LOWER, MOL_SLIDER, MOL_UPPER, NM, FromOutput, MCAMeta
+from .outputs import LINK_COLUMNS, MOL_LOWER, MOL_SLIDER, MOL_UPPER, NM, FromOutput, MCAMeta
 from .profiles import interface_height
 
 __all__ = ["BondTurnover", "MassTransfer", "STATE_LOWER", "STATE_LAYER", "STATE_UPPER", "count_events",
@@ -285,6 +285,7 @@ class MassTransfer(FromOutput, AnalysisBase):
         self._crossed = np.zeros((n, 2))
         self._crossed0 = self._count_crossed(h0, mols)
         self._unwrap = None
+        self._linked = None
 
     def _count_crossed(self, h, mols):
         half = 0.5 * self._meta.automaton_diameter_m / NM
@@ -303,6 +304,15 @@ class MassTransfer(FromOutput, AnalysisBase):
         else:
             xu = self._unwrap.update(x, L)
         self._xs[i] = xu[self._body, 0]
+        cross = next((ts.data[c] for c in LINK_COLUMNS["n_cross_body_links"] if c in ts.data), None)
+        links = next((ts.data[c] for c in LINK_COLUMNS["n_links"] if c in ts.data), ts.data.get("c_nbond"))
+        if cross is not None and links is not None:
+            if self._linked is None:
+                self._linked = np.zeros((self.n_frames, self._body.size), dtype=bool)
+            c = np.rint(np.asarray(cross)[self._body])
+            own = np.rint(np.asarray(links)[self._body]) - c
+            # linked to the other body: more of its links go there than stay in its own body
+            self._linked[i] = c > own
         if self._slider.size:
             self._xslider[i] = xu[self._slider, 0].mean()
         self._time[i] = ts.time * 1e-12
@@ -332,6 +342,14 @@ class MassTransfer(FromOutput, AnalysisBase):
         states = np.full(u.shape, STATE_LAYER, dtype=np.int8)
         states[u < vs[:, None] / 3] = STATE_LOWER
         states[u > 2 * vs[:, None] / 3] = STATE_UPPER
+        r.membership_source = "velocity"
+        if self._linked is not None:
+            # the mca law dumps each automaton's links to the other body: linked there = in the other body,
+            # whatever its velocity (an automaton welded to the counter-body but momentarily at rest)
+            other_state = np.where(self._own == STATE_LOWER, STATE_UPPER, STATE_LOWER).astype(np.int8)
+            linked = self._linked[w:]
+            states = np.where(linked, other_state[None, :], states)
+            r.membership_source = "velocity and links to the other body"
         t = self._time[w:]
         span = float(t[-1] - t[0])
         frame_dt = float(np.median(np.diff(t))) if t.size > 1 else float("nan")
