@@ -1,6 +1,7 @@
 """Parallel efficiency of the sweep engine: N tasks of length T on k workers of a LocalCluster.
 
-    python benchmarks/sweep_parallel_efficiency.py [--quick] [--tasks N] [--seconds T] [--workers 1,2]
+    python benchmarks/sweep_parallel_efficiency.py [--quick] [--tasks N] [--seconds T]
+        [--workers 1,2] [--kinds sleep,cpu]
 
 Two kinds of task, through the same Dask engine as ``tribolmp sweep``
 (:func:`tribolmp.campaign.make_client`: worker processes on 127.0.0.1):
@@ -42,7 +43,7 @@ def _sleep_task(seconds: float) -> float:
 
 
 def _calibrate(seconds: float) -> int:
-    """Repetitions of a 256x256 matrix product that take ``seconds`` on one idle core (measured here)."""
+    """Count the 256x256 matrix products that take ``seconds`` on one core (measured here)."""
     import numpy as np
 
     a = np.random.default_rng(0).normal(size=(256, 256))
@@ -80,18 +81,31 @@ def run(kind: str, n_tasks: int, seconds: float, workers: int, reps: int) -> dic
     wall = time.perf_counter() - t0
     t_task = sum(durations) / len(durations)
     work = n_tasks * t_task
-    return {"kind": kind, "tasks": n_tasks, "workers": workers, "task_s": round(t_task, 3),
-            "startup_s": round(t1 - t0, 3), "run_s": round(t2 - t1, 3), "wall_s": round(wall, 3),
-            "ideal_run_s": round(work / workers, 3),
-            # E_run: scheduling only (the cluster is up); E_total: also the cluster start-up and shutdown.
-            "efficiency_run": round(work / (workers * (t2 - t1)), 4), "efficiency_total": round(work / (workers * wall), 4),
-            "cpus": os.cpu_count(), "load_1min": round(os.getloadavg()[0], 2)}
+    return {
+        "kind": kind,
+        "tasks": n_tasks,
+        "workers": workers,
+        "task_s": round(t_task, 3),
+        "startup_s": round(t1 - t0, 3),
+        "run_s": round(t2 - t1, 3),
+        "wall_s": round(wall, 3),
+        "ideal_run_s": round(work / workers, 3),
+        # E_run: scheduling only (cluster up); E_total: also cluster start-up and shutdown.
+        "efficiency_run": round(work / (workers * (t2 - t1)), 4),
+        "efficiency_total": round(work / (workers * wall), 4),
+        "cpus": os.cpu_count(),
+        "load_1min": round(os.getloadavg()[0], 2),
+    }
 
 
 def main(argv=None) -> int:
     """Run the grid and write the CSV."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="2 s tasks (a smoke run; the goal is stated for >= 10 s tasks)")
+    ap.add_argument(
+        "--quick",
+        action="store_true",
+        help="2 s tasks (a smoke run; the goal is stated for >= 10 s tasks)",
+    )
     ap.add_argument("--tasks", type=int, default=8)
     ap.add_argument("--seconds", type=float, default=10.0)
     ap.add_argument("--workers", default="1,2")
@@ -99,8 +113,15 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     seconds = 2.0 if args.quick else args.seconds
     reps = _calibrate(seconds) if "cpu" in args.kinds else 0
-    rows = [run(kind, args.tasks, seconds, int(k), reps) for kind in args.kinds.split(",") for k in args.workers.split(",")]
-    print_table(f"sweep engine: {args.tasks} tasks of ~{seconds:g} s (goal E >= 0.9 for tasks >= 10 s)", rows)
+    rows = [
+        run(kind, args.tasks, seconds, int(k), reps)
+        for kind in args.kinds.split(",")
+        for k in args.workers.split(",")
+    ]
+    print_table(
+        f"sweep engine: {args.tasks} tasks of ~{seconds:g} s (goal E >= 0.9 for tasks >= 10 s)",
+        rows,
+    )
     name = "sweep_parallel_efficiency_quick.csv" if args.quick else "sweep_parallel_efficiency.csv"
     print(f"wrote {write_csv(RESULTS / name, rows)}")
     return 0

@@ -46,7 +46,9 @@ class StageResult:
         try:
             return self.values[key]
         except KeyError:
-            raise KeyError(f"stage {self.name!r} has no value {key!r}; it has {sorted(self.values)}") from None
+            raise KeyError(
+                f"stage {self.name!r} has no value {key!r}; it has {sorted(self.values)}"
+            ) from None
 
     def quantity(self, key: str) -> tuple[Any, str | None]:
         """``(value, unit)``; the unit is None where the stage gives none (text, counts)."""
@@ -94,7 +96,7 @@ class ChainResult:
         return [n for n, s in self.stages.items() if s.ran]
 
     def table(self) -> list[dict[str, Any]]:
-        """Every scalar value as rows ``{"stage", "key", "value", "unit"}`` (arrays stay in ``values``)."""
+        """Return every scalar as rows ``{"stage", "key", "value", "unit"}``."""
         rows = []
         for s in self.stages.values():
             for k, v in s.values.items():
@@ -103,8 +105,13 @@ class ChainResult:
         return rows
 
     def _repr_markdown_(self) -> str:  # Jupyter shows this
-        lines = [f"**{self.scene_name}**: {len(self.ran)} stage(s) in {self.wall_time_s:.1f} s; report `{self.report_md}`", "",
-                 "| stage | key | value | unit |", "|---|---|---|---|"]
+        lines = [
+            f"**{self.scene_name}**: {len(self.ran)} stage(s) in {self.wall_time_s:.1f} s; "
+            f"report `{self.report_md}`",
+            "",
+            "| stage | key | value | unit |",
+            "|---|---|---|---|",
+        ]
         for r in self.table():
             v = f"{r['value']:.4g}" if isinstance(r["value"], float) else str(r["value"])
             lines.append(f"| {r['stage']} | {r['key']} | {v} | {r['unit'] or ''} |")
@@ -112,7 +119,7 @@ class ChainResult:
 
 
 def as_scene(scene_or_path):
-    """A :class:`~tribolmp.scene.Scene` from a Scene, a TOML path, TOML text, a mapping or a shipped scene name."""
+    """Make a :class:`~tribolmp.scene.Scene` from a Scene, TOML path/text, mapping or name."""
     from .scene import Scene, example_scenes, load_scene, parse_scene, scene_path
 
     if isinstance(scene_or_path, Scene):
@@ -129,8 +136,18 @@ def as_scene(scene_or_path):
             return load_scene(text)
         if text in example_scenes():
             return load_scene(scene_path(text))
-        raise SceneError("scene", f"a TOML file, TOML text, a mapping or a shipped scene name {example_scenes()}", text, "run_chain")
-    raise SceneError("scene", "a Scene, a TOML path, TOML text or a mapping", type(scene_or_path).__name__, "run_chain")
+        raise SceneError(
+            "scene",
+            f"a TOML file, TOML text, a mapping or a shipped scene name {example_scenes()}",
+            text,
+            "run_chain",
+        )
+    raise SceneError(
+        "scene",
+        "a Scene, a TOML path, TOML text or a mapping",
+        type(scene_or_path).__name__,
+        "run_chain",
+    )
 
 
 def run_chain(
@@ -179,7 +196,7 @@ def run_chain(
 
 
 def load_result(out: str | Path) -> ChainResult:
-    """The :class:`ChainResult` of a finished run folder (its ``report.json``)."""
+    """Read the :class:`ChainResult` of a finished run folder (its ``report.json``)."""
     out = Path(out)
     report = json.loads((out / "report.json").read_text())
     rows = {r["name"]: r for r in report.get("stages", [])}
@@ -190,11 +207,23 @@ def load_result(out: str | Path) -> ChainResult:
     for name, row in rows.items():
         res = results.get(name, {})
         stages[name] = StageResult(
-            name=name, ran=bool(row.get("ran")), status=str(details.get(name, {}).get("status", "skipped")),
-            reason=str(row.get("reason", "")), values=res.get("values", {}), units=res.get("units", {}),
-            files={k: (out / v).resolve() for k, v in handoffs.get(name, {}).items()}, time_s=float(row.get("time_s", 0.0)),
+            name=name,
+            ran=bool(row.get("ran")),
+            status=str(details.get(name, {}).get("status", "skipped")),
+            reason=str(row.get("reason", "")),
+            values=res.get("values", {}),
+            units=res.get("units", {}),
+            files={k: (out / v).resolve() for k, v in handoffs.get(name, {}).items()},
+            time_s=float(row.get("time_s", 0.0)),
         )
     figures = {k: (out / v).resolve() for k, v in (report.get("figures") or {}).items()}
-    return ChainResult(scene_name=report.get("scene", {}).get("name", ""), out=out, stages=stages, figures=figures,
-                       report_json=out / "report.json", report_md=out / "report.md",
-                       wall_time_s=float(report.get("wall_time_s", 0.0)), report=report)
+    return ChainResult(
+        scene_name=report.get("scene", {}).get("name", ""),
+        out=out,
+        stages=stages,
+        figures=figures,
+        report_json=out / "report.json",
+        report_md=out / "report.md",
+        wall_time_s=float(report.get("wall_time_s", 0.0)),
+        report=report,
+    )

@@ -1,4 +1,7 @@
-"""docs/tutorial.md runs as written (issue 16 item 5): every ```python block, in order, in one namespace."""
+"""docs/tutorial.md runs as written (issue 16 item 5).
+
+Every ```python block, in order, in one namespace.
+"""
 
 from __future__ import annotations
 
@@ -30,11 +33,16 @@ def test_tutorial_blocks_run_and_say_what_they_claim(tmp_path, capsys):
     assert {s.status for s in again.stages.values() if s.ran} == {"cached"}
     assert faster["macroscale"].status == "computed"
     assert ns["mu"] == 0.16 and ns["unit"] is not None
-    assert set(res.figures) >= {"psd", "stiffness", "stick_slip"} and all(p.exists() for p in res.figures.values())
+    assert set(res.figures) >= {"psd", "stiffness", "stick_slip"} and all(
+        p.exists() for p in res.figures.values()
+    )
     assert res["contact"].files["stiffness"].exists()
     assert ns["info"]["format"] == "x3p" and ns["info"]["unit_source"] == "file metadata"
     assert ns["info"]["pixel_size_m"] == pytest.approx(2e-6)  # 128 µm / 64 from the file, converted
     measured = ns["measured"]
     assert measured["contact"]["pixel_size_m"] == pytest.approx(2e-6)
-    assert "measured.x3p" in measured["contact"]["surface"] and "file metadata" in measured["contact"]["surface"]
+    assert (
+        "measured.x3p" in measured["contact"]["surface"]
+        and "file metadata" in measured["contact"]["surface"]
+    )
     assert "mu = 0.16" in out
