@@ -190,7 +190,7 @@ def main(argv=None) -> int:
 
 
 def _quad_python(R, eta, h0, V, nodes, xs, ws, xi_max):
-    """The exact first integral by Gauss-Legendre in pure Python (no numpy call overhead)."""
+    """Evaluate the exact first integral by Gauss-Legendre in pure Python (no numpy call overhead)."""
     rc = math.sqrt(2.0 * R * h0)
     s = 0.0
     for x, w in zip(xs, ws):
@@ -207,7 +207,13 @@ def axisymmetric_speedup(quick: bool) -> list[dict]:
 
     from tribolmp.models.lubrication import reference as ref
     from tribolmp.models.lubrication.reduced import squeeze_damper_force
-    from tribolmp.models.lubrication.reynolds import ReynoldsParams, _gauss_legendre, quadrature_force, quadrature_force_many, solve
+    from tribolmp.models.lubrication.reynolds import (
+        ReynoldsParams,
+        _gauss_legendre,
+        quadrature_force,
+        quadrature_force_many,
+        solve,
+    )
 
     R, eta, V, dom = 1e-3, 0.1, 1e-3, 1000.0
     S = dom**2
@@ -268,7 +274,7 @@ def axisymmetric_speedup(quick: bool) -> list[dict]:
 
 
 def mixed_squeeze_figure(csv_path, png_path, quick: bool) -> None:
-    """The film-squeeze-out figure: rough MDR profile under 1 N through 0.1 Pa s, new model vs old."""
+    """Draw the film-squeeze-out figure: rough MDR profile, 1 N, 0.1 Pa s, new model against old."""
     import numpy as np
 
     from tribolmp.models.contact import rough
