@@ -220,6 +220,44 @@ def campaign_figures(campaign: Path, out_dir: Path, prefix: str = "mca_study") -
     return paths
 
 
+def roughness_figure(run_dirs: list[Path], path: Path) -> dict[str, dict]:
+    """Plot the rms of the lower body's column-mass profile (profile.npz) against time for each run.
+
+    Returns, per run, the rms at frame 0, after 1 ns, and at the end (m): the "roughness destroyed
+    within ns" diagnostic.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    from tribolmp.analysis.eq23 import read_profile
+
+    fig, ax = plt.subplots(figsize=(5.5, 3.4))
+    out = {}
+    for run in run_dirs:
+        f = run / "profile.npz"
+        if not f.exists():
+            continue
+        prof = read_profile(f)
+        h = prof["h"] - prof["h"].mean(axis=1, keepdims=True)
+        rms = h.std(axis=1)
+        t = prof["t"]
+        ax.plot(t * 1e9, rms * 1e9, lw=0.8, label=run.name)
+        i1 = int(np.searchsorted(t, t[0] + 1e-9))
+        out[run.name] = {"rms0_m": float(rms[0]), "rms_1ns_m": float(rms[min(i1, rms.size - 1)]),
+                         "rms_end_m": float(rms[-1]), "rms_last_quarter_m": float(rms[3 * rms.size // 4:].mean())}
+    ax.set_xlabel("t (ns)")
+    ax.set_ylabel("rms of h(x) (nm)")
+    ax.set_title("lower body's column-mass profile: roughness against time", fontsize=8)
+    ax.legend(fontsize=5, ncol=2)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+    return out
+
+
 def _cell(row: dict, key: str, scale, fmt: str) -> str:
     v = row.get(key)
     if v is None:
@@ -297,6 +335,7 @@ def main(argv=None) -> int:
     failed = 0
     t_all = time.perf_counter()
     points = [(v, p, sd) for v in args.velocities for p in args.pressures for sd in seeds]
+    default_law = preset_params(preset, dim=args.dim).bond_style
     for v, p, sd in points:
         name = f"v{v:g}_p{p / 1e6:g}MPa" + (f"_s{sd}" if len(seeds) > 1 or args.seeds else "")
         run_dir = out / name
@@ -337,7 +376,8 @@ def main(argv=None) -> int:
         if campaign is not None and not row.get("finished"):
             # a failed run is a row too (status says why), so the table shows what is missing
             append_campaign(campaign, {"run": name, "pressure_Pa": p, "sliding_velocity_m_s": v, "seed": sd,
-                                       "law": overrides.get("bond_style"), "status": row["status_text"]})
+                                       "law": overrides.get("bond_style") or default_law, "dim": args.dim,
+                                       "status": row["status_text"]})
         rows.append(row)
         csv_path, md_path = write_tables(rows, out)
         print(f"{name}: mu={_cell(row, 'mu', 1.0, '{:.3f}')} layer={_cell(row, 'layer_depth_m', 1e9, '{:.2f}')} nm "
