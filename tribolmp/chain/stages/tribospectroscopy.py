@@ -91,7 +91,7 @@ class Tribospectroscopy(Stage):
         f2_meas = f2 * (1.0 + noise * meas_rng.standard_normal(f2.shape))
         fit = ts.fit_length(ts.MeasuredCurve(amplitude=a, value=f2_meas, quantity="force_sq",
                                              source=f"simulated measurement, {noise:g} relative noise"),
-                            model=params.model, rng=boot_rng)
+                            model=params.model, noise="proportional", rng=boot_rng)  # the noise drawn above
         f2_fit = model_curve(fit["model"], a, fit["length_m"], fit["force0_N"] ** 2, fit["background"], "force_sq")
         interval = [float(x) for x in np.asarray(fit.get("length_interval_m", (np.nan, np.nan)), float)]
         np.savez(ctx.workdir / "f2.npz", amplitude=a, f2=f2, f2_measured=f2_meas, f2_fit=f2_fit,
@@ -107,6 +107,8 @@ class Tribospectroscopy(Stage):
             "fitted_length_std_m": float(fit["length_std_m"]) if np.isfinite(fit["length_std_m"]) else None,
             "fitted_length_interval_m": [x if np.isfinite(x) else None for x in interval],
             "fit_bounded": bool(fit.get("bounded", False)),
+            "fit_noise_model": str(fit.get("noise_model", "")),
+            "fit_coverage_tested": bool(fit.get("coverage_tested", False)),
             "fit_message": str(fit.get("message", "")),
             "fitted_length_m": float(fit.get("length_m", np.nan)),
             "force_at_zero_amplitude_N": float(np.sqrt(f2[0])),
