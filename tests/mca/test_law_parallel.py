@@ -22,7 +22,9 @@ from tribolmp.lammps.material_test import block_setup
 
 pytestmark = pytest.mark.lammps
 
-STEPS = 1600
+# the block breaks up in a few hundred steps (the velocity jump at the y boundary is 200 m/s);
+# past ~1500 steps round-off differences grow into different event counts (chaotic dynamics)
+STEPS = 1000
 
 _SCRIPT = textwrap.dedent(
     """
@@ -95,10 +97,10 @@ def test_one_and_two_ranks_agree(lammps_available, tmp_path):
     assert int(two["nprocs"]) == 2
     assert one["tallies"][4] > 0
     # not bit-identical: forces are summed in another order across ranks, and the round-off
-    # grows through the rupture of the shear band (measured 3e-6 nm after 1600 steps; 3e-14 nm
-    # before rupture).  Every tally and link count is identical; positions agree to 1e-4 nm
-    # (4e-5 of a diameter) and stresses to 1 MPa (measured 0.2 MPa; stresses ~300 MPa)
+    # grows through the rupture of the block (measured 9e-10 nm after 1000 steps, 7e-12 nm after
+    # 600).  Every tally and link count is identical; positions agree to 1e-6 nm and stresses
+    # to 1 MPa (stresses ~300 MPa)
     assert np.array_equal(one["tallies"], two["tallies"])
-    assert _dx(one, two) < 1e-4
+    assert _dx(one, two) < 1e-6
     assert np.allclose(one["state"], two["state"], rtol=1e-3, atol=1.0)
     assert np.array_equal(one["state"][:, 7:9], two["state"][:, 7:9])

@@ -114,10 +114,14 @@ inline double coulomb_scale(const Material &m, double sig_n, double tau_mag)
 // strength.  Compression alone never breaks a link (sigma_n <= 0 drops out and
 // sqrt(3)|tau| <= von Mises stress <= sigma_0 as long as plasticity caps it, with
 // equality only for pure shear on top of the pressure).
-inline bool link_breaks(double sig_n, double tau_mag, double strength)
+inline bool link_breaks_sq(double sig_n, double tau_sq, double strength)
 {
   const double t = (sig_n > 0.0) ? sig_n : 0.0;
-  return t * t + 3.0 * tau_mag * tau_mag > strength * strength;
+  return t * t + 3.0 * tau_sq > strength * strength;    // tau_sq = |tau|^2 (no square root)
+}
+inline bool link_breaks(double sig_n, double tau_mag, double strength)
+{
+  return link_breaks_sq(sig_n, tau_mag * tau_mag, strength);
 }
 
 // Rule 4 (welding).  An unlinked contact pressed with a compressive pair stress
@@ -127,9 +131,9 @@ inline bool link_breaks(double sig_n, double tau_mag, double strength)
 // can hold them (without this a sheared contact welds and breaks every step).
 // The weld keeps the contact's force: its plastic offset p_n is chosen so that
 //   2G (e_raw - p_n) + alpha Xbar = Kc e_raw.
-inline bool welds(const Material &m, double sig_n, double tau_mag)
+inline bool welds(const Material &m, double sig_n, double tau_sq)
 {
-  return m.wfac > 0.0 && -sig_n >= m.wonset && !link_breaks(sig_n, tau_mag, m.wfac * m.s0);
+  return m.wfac > 0.0 && -sig_n >= m.wonset && !link_breaks_sq(sig_n, tau_sq, m.wfac * m.s0);
 }
 inline double weld_offset(const Material &m, double eraw, double Xbar)
 {

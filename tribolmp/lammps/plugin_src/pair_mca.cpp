@@ -2,9 +2,10 @@
    tribolmp MCA plugin: pair style mca (see pair_mca.h and mca_law.h)
 
    Step of the law, for every local automaton i and every neighbour j of a
-   FULL neighbour list (each pair is evaluated on the ranks of both partners,
-   in the canonical orientation a = smaller ID, b = larger ID, so both copies
-   of the pair state evolve identically and no reverse communication is
+   FULL neighbour list (a pair with a ghost partner is evaluated on the ranks
+   of both partners, a pair of two local automata once for both; always in
+   the canonical orientation a = smaller ID, b = larger ID, so both copies of
+   the pair state evolve identically and no reverse communication is
    needed):
      1. ghosts receive X (mean stress term) and the pending plastic strain
         increment of their automaton (forward communication);
@@ -58,6 +59,7 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   pvector = new double[NTALLY];
   for (int k = 0; k < NTALLY; k++) pvector[k] = 0.0;
   cacheflat = nullptr;
+  mirrorflat = nullptr;
   cacheoff = nullptr;
   maxflat = 0;
   sacc = nullptr;
@@ -68,6 +70,7 @@ PairMCA::~PairMCA()
 {
   delete[] pvector;
   memory->destroy(cacheflat);
+  memory->destroy(mirrorflat);
   memory->destroy(cacheoff);
   memory->destroy(sacc);
   if (allocated) {
@@ -250,7 +253,9 @@ void PairMCA::rebuild_cache()
   if (total > maxflat) {
     maxflat = total + total / 4 + 16;
     memory->destroy(cacheflat);
+    memory->destroy(mirrorflat);
     memory->create(cacheflat, maxflat, "pair:mca:cacheflat");
+    memory->create(mirrorflat, maxflat, "pair:mca:mirrorflat");
   }
   const int mp = fix->maxpartner;
   int *seen = new int[mp];
@@ -271,6 +276,8 @@ void PairMCA::rebuild_cache()
         seen[k] = 1;
       }
       cacheflat[off + jj] = k;
+      // local partner with the larger ID: this pair is evaluated here for both; its slot in j
+      mirrorflat[off + jj] = (j < nlocal && tag[i] < tag[j]) ? find_slot(j, (double) tag[i]) : -1;
     }
     off += numneigh[i];
     for (int k = 0; k < mp; k++) {
@@ -326,11 +333,15 @@ void PairMCA::compute(int eflag, int vflag)
     int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
     int *cache_i = &cacheflat[cacheoff[i]];
+    int *mirror_i = &mirrorflat[cacheoff[i]];
 
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const double jtag = (double) tag[j];
       if (jtag == itag) continue;
+      // two local automata: evaluated once, in the loop of the one with the smaller ID
+      const bool jlocal = j < nlocal;
+      if (jlocal && jtag < itag) continue;
       const double dbar = radius[i] + radius[j];
       double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
       const double rsq = dx * dx + dy * dy + dz * dz;
@@ -342,6 +353,10 @@ void PairMCA::compute(int eflag, int vflag)
         if (rsq >= dbar * dbar && !mklink) continue;
         k = new_slot(i, jtag);
         cache_i[jj] = k;
+        if (jlocal) {
+          const int kj = find_slot(j, itag);
+          mirror_i[jj] = (kj >= 0) ? kj : new_slot(j, itag);
+        }
         double *s = fix->slot(i, k);
         const double sg = (itag < jtag) ? 1.0 : -1.0;
         s[FS::S_KIND] = mklink ? ikind : FS::CONTACT;
@@ -352,19 +367,25 @@ void PairMCA::compute(int eflag, int vflag)
         if (mklink) s[FS::S_PN] = (std::sqrt(rsq) - dbar) / dbar;
       }
       double *s = fix->slot(i, k);
+      double *sj = jlocal ? fix->slot(j, mirror_i[jj]) : nullptr;
       const bool i_is_a = itag < jtag;
       const double sg = i_is_a ? 1.0 : -1.0;
       const int a = i_is_a ? i : j, b = i_is_a ? j : i;
       // canonical relative position, a -> b
       const double R[3] = {sg * dx, sg * dy, sg * dz};
       const double r = std::sqrt(rsq);
-      const double n[3] = {R[0] / r, R[1] / r, R[2] / r};
+      const double ir = 1.0 / r;
+      const double n[3] = {R[0] * ir, R[1] * ir, R[2] * ir};
       const double eraw = (r - dbar) / dbar;
       int kind = static_cast<int>(s[FS::S_KIND]);
 
       if (kind == FS::CONTACT && eraw >= 0.0) {    // contact opened: forget it
         memset(s, 0, sizeof(double) * FS::NSLOT);
         cache_i[jj] = -1;
+        if (sj) {
+          memset(sj, 0, sizeof(double) * FS::NSLOT);
+          mirror_i[jj] = -1;
+        }
         continue;
       }
 
@@ -401,13 +422,19 @@ void PairMCA::compute(int eflag, int vflag)
           // (mean of the two halves of the pair) leave the elastic pair strain
           const double *pa = &autom[a][FS::A_DEP], *pb = &autom[b][FS::A_DEP];
           double D[6];
-          for (int c = 0; c < 6; c++) D[c] = 0.5 * (pa[c] + pb[c]);
-          const double Dn[3] = {D[0] * n[0] + D[3] * n[1] + D[4] * n[2],
-                                D[3] * n[0] + D[1] * n[1] + D[5] * n[2],
-                                D[4] * n[0] + D[5] * n[1] + D[2] * n[2]};
-          const double nDn = n[0] * Dn[0] + n[1] * Dn[1] + n[2] * Dn[2];
-          s[FS::S_PN] += nDn;
-          for (int c = 0; c < 3; c++) xi[c] -= dbar * (Dn[c] - nDn * n[c]);
+          double dsum = 0.0;
+          for (int c = 0; c < 6; c++) {
+            D[c] = 0.5 * (pa[c] + pb[c]);
+            dsum += std::fabs(D[c]);
+          }
+          if (dsum > 0.0) {    // elastic automata have no offsets (the common case)
+            const double Dn[3] = {D[0] * n[0] + D[3] * n[1] + D[4] * n[2],
+                                  D[3] * n[0] + D[1] * n[1] + D[5] * n[2],
+                                  D[4] * n[0] + D[5] * n[1] + D[2] * n[2]};
+            const double nDn = n[0] * Dn[0] + n[1] * Dn[1] + n[2] * Dn[2];
+            s[FS::S_PN] += nDn;
+            for (int c = 0; c < 3; c++) xi[c] -= dbar * (Dn[c] - nDn * n[c]);
+          }
           for (int c = 0; c < 3; c++) s[FS::S_TH + c] += dt * (omega[b][c] - omega[a][c]);
         }
       }
@@ -424,9 +451,9 @@ void PairMCA::compute(int eflag, int vflag)
       if (kind == FS::LINK || kind == FS::WELD || kind == FS::ATTACH) {
         sn = link_normal(mat, eraw - s[FS::S_PN], Xbar);
         for (int c = 0; c < 3; c++) tau[c] = sf * xi[c];
-        const double tm = std::sqrt(tau[0] * tau[0] + tau[1] * tau[1] + tau[2] * tau[2]);
+        const double t2 = tau[0] * tau[0] + tau[1] * tau[1] + tau[2] * tau[2];
         const double strength = (kind == FS::LINK) ? mat.s0 : mat.wfac * mat.s0;
-        if (advance && kind != FS::ATTACH && link_breaks(sn, tm, strength)) {
+        if (advance && kind != FS::ATTACH && link_breaks_sq(sn, t2, strength)) {
           if (i_is_a) {
             autom[i][FS::A_LB] += 1.0;
             if (cross) autom[i][FS::A_CB] += 1.0;
@@ -438,6 +465,10 @@ void PairMCA::compute(int eflag, int vflag)
           if (eraw >= 0.0) {
             memset(s, 0, sizeof(double) * FS::NSLOT);
             cache_i[jj] = -1;
+            if (sj) {
+              memset(sj, 0, sizeof(double) * FS::NSLOT);
+              mirror_i[jj] = -1;
+            }
             continue;
           }
         }
@@ -445,15 +476,17 @@ void PairMCA::compute(int eflag, int vflag)
       if (kind == FS::CONTACT) {
         sn = contact_normal(mat, eraw);
         for (int c = 0; c < 3; c++) tau[c] = sf * xi[c];
-        const double tm = std::sqrt(tau[0] * tau[0] + tau[1] * tau[1] + tau[2] * tau[2]);
-        const double cs = coulomb_scale(mat, sn, tm);
+        const double t2 = tau[0] * tau[0] + tau[1] * tau[1] + tau[2] * tau[2];
+        const double cap = mat.mu * std::fabs(sn);
+        // Coulomb: scale only when sliding (the square root only then)
+        const double cs = (t2 > cap * cap && t2 > 0.0) ? coulomb_scale(mat, sn, std::sqrt(t2)) : 1.0;
         if (cs < 1.0)
           for (int c = 0; c < 3; c++) {
             xi[c] *= cs;
             tau[c] *= cs;
           }
-        const double tm2 = (cs < 1.0) ? tm * cs : tm;
-        if (advance && welds(mat, sn, tm2)) {
+        const double t2c = (cs < 1.0) ? cap * cap : t2;
+        if (advance && welds(mat, sn, t2c)) {
           kind = FS::WELD;
           s[FS::S_KIND] = kind;
           s[FS::S_PN] = weld_offset(mat, eraw, Xbar);
@@ -473,47 +506,60 @@ void PairMCA::compute(int eflag, int vflag)
         const double cv = viscous_factor(mat, A, dbar);
         for (int c = 0; c < 3; c++) Fd[c] = cv * vrel[c];
       } else {
-        const double ma = rmass[a], mb = rmass[b];
-        const double meff = ma * mb / (ma + mb);
-        const double kl = mat.Kc * A / dbar;
-        const double cd = mat.damp * 2.0 * std::sqrt(kl * meff);
+        if (s[FS::S_CD] == 0.0 && mat.damp > 0.0) {
+          // damping constants of the pair (fixed by masses and radii): once per link
+          const double ma = rmass[a], mb = rmass[b];
+          const double meff = ma * mb / (ma + mb);
+          const double kl = mat.Kc * A / dbar;
+          const double kr0 = rotational_stiffness(mat, A, dbar);
+          const double Ia = 0.4 * ma * ra * ra, Ib = 0.4 * mb * rb * rb;
+          s[FS::S_CD] = mat.damp * 2.0 * std::sqrt(kl * meff);
+          s[FS::S_CR] = mat.damp * 2.0 * std::sqrt(kr0 * Ia * Ib / (Ia + Ib));
+        }
+        const double cd = s[FS::S_CD], cr = s[FS::S_CR];
         for (int c = 0; c < 3; c++) Fd[c] = cd * vrel[c];
         const double kr = rotational_stiffness(mat, A, dbar);
-        const double Ia = 0.4 * ma * ra * ra, Ib = 0.4 * mb * rb * rb;
-        const double cr = mat.damp * 2.0 * std::sqrt(kr * Ia * Ib / (Ia + Ib));
         for (int c = 0; c < 3; c++)
           Ma[c] = kr * s[FS::S_TH + c] + cr * (omega[b][c] - omega[a][c]);
       }
 
-      // force and torque on i
-      const double si = i_is_a ? 1.0 : -1.0;    // F_b = -F_a
-      const double ni[3] = {si * n[0], si * n[1], si * n[2]};    // from i towards its partner
-      double Fi[3], Ft[3];
-      for (int c = 0; c < 3; c++) Fi[c] = si * (Fe[c] + Fd[c]);
-      const double Fin = Fi[0] * ni[0] + Fi[1] * ni[1] + Fi[2] * ni[2];
-      for (int c = 0; c < 3; c++) Ft[c] = Fi[c] - Fin * ni[c];
-      const double rci = radius[i];
-      f[i][0] += Fi[0];
-      f[i][1] += Fi[1];
-      f[i][2] += Fi[2];
-      torque[i][0] += rci * (ni[1] * Ft[2] - ni[2] * Ft[1]) + si * Ma[0];
-      torque[i][1] += rci * (ni[2] * Ft[0] - ni[0] * Ft[2]) + si * Ma[1];
-      torque[i][2] += rci * (ni[0] * Ft[1] - ni[1] * Ft[0]) + si * Ma[2];
-      if (evflag) ev_tally_xyz_full(i, 0.0, 0.0, Fi[0], Fi[1], Fi[2], -dx, -dy, -dz);
-
-      // Love-Weber sum of the elastic pair forces (contact point r_i n_i)
-      double Fei[3] = {si * Fe[0], si * Fe[1], si * Fe[2]};
-      double *acc = sacc[i];
-      acc[0] += rci * ni[0] * Fei[0];
-      acc[1] += rci * ni[1] * Fei[1];
-      acc[2] += rci * ni[2] * Fei[2];
-      acc[3] += 0.5 * rci * (ni[0] * Fei[1] + ni[1] * Fei[0]);
-      acc[4] += 0.5 * rci * (ni[0] * Fei[2] + ni[2] * Fei[0]);
-      acc[5] += 0.5 * rci * (ni[1] * Fei[2] + ni[2] * Fei[1]);
-      // attachments (to rigid layers) are not links of the material: not counted
-      if (linked && !attached) {
-        acc[6] += 1.0;
-        if (cross) acc[7] += 1.0;
+      // force and torque on i (and on j when it is local: F_b = -F_a)
+      double Fe_c[3] = {Fe[0], Fe[1], Fe[2]};
+      auto apply = [&](int q, double sq, double delx, double dely, double delz) {
+        const double nq[3] = {sq * n[0], sq * n[1], sq * n[2]};    // from q towards its partner
+        double Fq[3], Ft[3];
+        for (int c = 0; c < 3; c++) Fq[c] = sq * (Fe_c[c] + Fd[c]);
+        const double Fqn = Fq[0] * nq[0] + Fq[1] * nq[1] + Fq[2] * nq[2];
+        for (int c = 0; c < 3; c++) Ft[c] = Fq[c] - Fqn * nq[c];
+        const double rq = radius[q];
+        f[q][0] += Fq[0];
+        f[q][1] += Fq[1];
+        f[q][2] += Fq[2];
+        torque[q][0] += rq * (nq[1] * Ft[2] - nq[2] * Ft[1]) + sq * Ma[0];
+        torque[q][1] += rq * (nq[2] * Ft[0] - nq[0] * Ft[2]) + sq * Ma[1];
+        torque[q][2] += rq * (nq[0] * Ft[1] - nq[1] * Ft[0]) + sq * Ma[2];
+        if (evflag) ev_tally_xyz_full(q, 0.0, 0.0, Fq[0], Fq[1], Fq[2], delx, dely, delz);
+        // Love-Weber sum of the elastic pair forces (contact point r_q n_q)
+        const double Feq[3] = {sq * Fe_c[0], sq * Fe_c[1], sq * Fe_c[2]};
+        double *acc = sacc[q];
+        acc[0] += rq * nq[0] * Feq[0];
+        acc[1] += rq * nq[1] * Feq[1];
+        acc[2] += rq * nq[2] * Feq[2];
+        acc[3] += 0.5 * rq * (nq[0] * Feq[1] + nq[1] * Feq[0]);
+        acc[4] += 0.5 * rq * (nq[0] * Feq[2] + nq[2] * Feq[0]);
+        acc[5] += 0.5 * rq * (nq[1] * Feq[2] + nq[2] * Feq[1]);
+        // attachments (to rigid layers) are not links of the material: not counted
+        if (linked && !attached) {
+          acc[6] += 1.0;
+          if (cross) acc[7] += 1.0;
+        }
+      };
+      const double si = i_is_a ? 1.0 : -1.0;
+      apply(i, si, -dx, -dy, -dz);
+      if (sj) {
+        apply(j, -si, dx, dy, dz);
+        memcpy(sj, s, sizeof(double) * FS::NSLOT);
+        sj[FS::S_TAG] = itag;
       }
       if (i_is_a && !attached) {
         if (linked) {

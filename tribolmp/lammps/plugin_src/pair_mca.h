@@ -58,6 +58,7 @@ class PairMCA : public Pair {
   int *ncache;
   int maxcache_atoms;
   int *cacheflat;       // slot index of each neighbour of each local atom (-1: none)
+  int *mirrorflat;      // for a local neighbour with a larger ID: its slot for this atom
   bigint *cacheoff;     // offset of atom i's neighbours in cacheflat
   bigint maxflat;
   double **sacc;        // Love-Weber sums and link counts of local atoms
