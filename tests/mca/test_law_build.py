@@ -95,3 +95,14 @@ def test_cli_material_test_bad_input_is_one_line_exit_2(argv, field):
                        capture_output=True, text=True, timeout=120)
     assert p.returncode == 2
     assert field in p.stderr and len(p.stderr.strip().splitlines()) == 1
+
+
+def test_session_loads_the_plugin(lammps_available):
+    from tribolmp.lammps.session import LammpsSession
+
+    with LammpsSession(require=()) as s:
+        path = s.load_plugin("mca")
+        assert path.is_file()
+        assert all(s.has_style(c, n) for c, n in plug.PLUGIN_STYLES)
+        with pytest.raises(MissingFeatureError, match="plugin"):
+            s.load_plugin("nope")

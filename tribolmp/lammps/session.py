@@ -239,6 +239,21 @@ class LammpsSession:
             msg, failing = _parse_error(str(exc), None)
             raise LammpsError(msg, failing, step=self._step_or_none()) from None
 
+    def load_plugin(self, name: str = "mca") -> Path:
+        """Build (cached) and ``plugin load`` a tribolmp plugin; returns its path.
+
+        Parameters
+        ----------
+        name : {"mca"}
+            The plugin: ``mca`` provides ``pair_style mca``, ``fix mca/state`` and
+            ``compute mca/atom`` (:mod:`tribolmp.lammps.plugin`).
+        """
+        if name != "mca":
+            raise MissingFeatureError(f"LAMMPS plugin: expected 'mca', got {name!r}")
+        from .plugin import load_plugin
+
+        return load_plugin(self)
+
     def set_variable(self, name: str, value: Any) -> None:
         """Define or overwrite an index-style variable."""
         self.command(f"variable {name} delete")
