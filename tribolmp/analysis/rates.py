@@ -343,9 +343,13 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
     else:
         cb["cross_body_links_formed"] = None
         cb["cross_body_links_broken"] = None
-        reason = (f"law {law!r} does not count links between the bodies: its dump (c_nbond) and log give links per "
-                  "automaton without their partners, so links between the bodies cannot be told from links within "
-                  "a body (the mca law's C2 tallies do)")
+        if law == "mca":
+            reason = ("the mca law counts them (C2 tallies of `compute pair mca`), but this run's friction.csv has "
+                      "no cross_body_links_formed column: the deck did not print the tallies")
+        else:
+            reason = (f"law {law!r} does not count links between the bodies: its dump (c_nbond) and log give links "
+                      "per automaton without their partners, so links between the bodies cannot be told from links "
+                      "within a body (the mca law's C2 tallies do)")
         cb["cross_body_links_reason"] = reason
         warnings_.append(f"cross_body_links_formed: null: {reason}")
     # ---- the surface profile and its Eq. 23 fit
