@@ -164,34 +164,6 @@ def test_short_run_without_steady_state_is_flagged(tmp_path):
     assert on_disk["units"]["mu_window_start_s"] == "s"
 
 
-def test_topography_takes_measured_c1_or_falls_back_to_the_scene():
-    """The hand-off to Eq. 23 (models.topography.rates) accepts rates.json v2: valid C1 coefficients are used
-    as measured; a rates.json without them (and without the removed step_time_s identity) drives nothing."""
-    from tribolmp.models.topography.rates import params_from_rates, params_from_scene
-    from tribolmp.scene import default_scene
-
-    c1 = {"mu_per_s": 2e9, "d0_m2_s": 1e-7, "dz": 1e-16, "dx_l2": 1e-33, "step_length_m": 2.5e-9,
-          "valid": {"mu_per_s": True, "d0_m2_s": True, "dz": True, "dx_l2": True}}
-    p1 = params_from_rates(c1, dim=1, n=64)
-    assert (p1.mu, p1.d0, p1.dz) == (2e9, 1e-7, 1e-16)
-    assert p1.dx_noise * p1.l**2 == pytest.approx(1e-33)
-    # 2D surface: per unit width of the one-automaton slab
-    p2 = params_from_rates(c1, dim=2, n=64)
-    assert p2.dz == pytest.approx(1e-16 * 2.5e-9)
-    scene = default_scene()
-    measured_nothing = {**c1, "mu_per_s": None, "valid": {**c1["valid"], "mu_per_s": False}}
-    fallback = params_from_scene(scene, rates=measured_nothing)
-    topo = scene.topography
-    assert (fallback.d0, fallback.mu) == (topo.d0, topo.mu)
-    # the chain hands the rates over as the shared record (tribolmp.records.Rates): same decisions
-    from tribolmp.records import Rates
-
-    rec = Rates.from_mapping({k: v for k, v in measured_nothing.items()}, source="test")
-    again = params_from_scene(scene, rates=rec)
-    assert (again.d0, again.mu) == (topo.d0, topo.mu)
-    assert params_from_scene(scene, rates=Rates.from_mapping(c1, source="test")).mu == 2e9
-
-
 def test_rates_json_loads_into_the_shared_record(tmp_path):
     """rates.json is read by the chain through tribolmp.records.Rates: every shared field must validate."""
     from tribolmp.records import Rates
