@@ -49,13 +49,17 @@ wear_rate = 2.1e7
 layer_depth_m = 4.3e-9
 step_length_m = 4.3e-9
 step_time_s = 3.5e-7
+sliding_velocity_m_s = 5.0
+pressure_Pa = 150e6
 [topography]
 dim = 2
 grid_points = 16
 pixel_size = 2.5e-9
 steps = 20
+[tribospectroscopy]
+frequency = 65e3
 [outputs]
-requested = ["rates", "topography", "stiffness", "stick_slip"]
+requested = ["rates", "topography", "stiffness", "stick_slip", "tribospectroscopy"]
 figures = false
 """
 
@@ -126,9 +130,10 @@ def test_sweep_of_a_rates_given_scene_with_seeds_gives_errors_and_mu_figure(tmp_
     scene = tmp_path / "rates.toml"
     scene.write_text(RATES_SCENE)
     out = tmp_path / "sw"
-    code = main(["sweep", str(scene), "--vary", "load.normal_force=5,10", "--vary", "kinematics.sliding_velocity=0.01,0.02",
+    # The tribospectroscopy frequency is read by that stage only: the points of one force and seed share
+    # their topography, contact and macroscale stages.
+    code = main(["sweep", str(scene), "--vary", "load.normal_force=5,10", "--vary", "tribospectroscopy.frequency=65e3,130e3",
                  "--seeds", "2", "--workers", "2", "--out", str(out), "--json", "--quiet"])
-    # 8 points, 2 workers
     captured = capsys.readouterr()
     assert code == 0, captured.err
     res = json.loads(captured.out)
@@ -140,12 +145,21 @@ def test_sweep_of_a_rates_given_scene_with_seeds_gives_errors_and_mu_figure(tmp_
         assert s["mean"]["macroscale.mu"] == pytest.approx(0.16)  # given in [rates]
         assert s["sem"]["topography.rq"] > 0  # two seeds, two surfaces: a measured spread
     assert Path(res["figures"]["mu_vs_pressure"]).exists()
-    # Shared stages: the topography does not read [load], so 8 points need 2 seeds x 2 velocities at most.
-    topo = [p for p in (out / "cache").iterdir() if p.name.startswith("topography-") and p.is_dir() and "." not in p.name]
-    assert len(topo) == 4
+    # Shared stages are computed once: across the 8 points' reports, every stage key that appears was
+    # "computed" by exactly one point, the others that need it report it "cached" (two workers, concurrent).
+    computed: dict[str, int] = {}
+    users: dict[str, int] = {}
+    for p in res["points"]:
+        rep = json.loads((out / "points" / point_id(p["vary"], p["seed"]) / "report.json").read_text())
+        for name, d in rep["stage_details"].items():
+            if d["status"] in ("computed", "cached"):
+                computed.setdefault(f"{name}-{d['key']}", 0)
+                computed[f"{name}-{d['key']}"] += d["status"] == "computed"
+                users[f"{name}-{d['key']}"] = users.get(f"{name}-{d['key']}", 0) + 1
+    assert computed and all(n == 1 for n in computed.values()), computed
+    assert max(users.values()) > 1, users  # the sweep did share stages (else the check above is empty)
 
 
-@pytest.mark.slow  # three sweeps in subprocesses (cluster start-ups): ~45 s wall on 2 busy cores
 def test_a_killed_sweep_resumes_and_a_second_sweep_reuses_shared_points(tmp_path):
     scene = tmp_path / "rates.toml"
     scene.write_text(RATES_SCENE)
