@@ -48,7 +48,7 @@ SOURCE_DIR = Path(__file__).resolve().parent / "plugin_src"
 #: (category, style) pairs the plugin provides.
 PLUGIN_STYLES = (("pair", "mca"), ("fix", "mca/state"), ("compute", "mca/atom"))
 _SO_NAME = "mcaplugin.so"
-_CXXFLAGS = ("-std=c++17", "-O2", "-fPIC", "-shared")
+_CXXFLAGS = ("-std=c++17", "-O3", "-fno-math-errno", "-fPIC", "-shared")
 
 
 def cache_root() -> Path:
