@@ -154,6 +154,86 @@ def _hex_block(nx: int, nrows: int, d: float):
     return block, dy
 
 
+def _rotated_fit(nx: int) -> tuple[int, int]:
+    """(nx, ncol): box of nx lattice spacings that holds an even number ncol of rotated columns.
+
+    Columns of the 90-degree rotated hexagonal lattice are sqrt(3)/2 d apart
+    and alternate, so the rotated body repeats after an even number of them;
+    of the box lengths within 3 spacings of ``nx`` the one with the smallest
+    stretch is taken.
+    """
+    best = None
+    for n in range(max(4, nx - 3), nx + 4):
+        ncol = 2 * max(2, round(n / math.sqrt(3.0)))
+        stretch = abs(n / (ncol * math.sqrt(3.0) / 2.0) - 1.0)
+        if best is None or stretch < best[0]:
+            best = (stretch, n, ncol)
+    return best[1], best[2]
+
+
+def _poly_block(lx: float, height: float, d: float, grain_size: float, rng: np.random.Generator):
+    """ASE Atoms of a 2D polycrystal: periodic-in-x Voronoi grains of rotated hexagonal lattices."""
+    from ase import Atoms
+    from scipy.spatial import cKDTree
+
+    ngrain = max(2, int(round(lx * height / grain_size**2)))
+    seeds = np.column_stack([rng.uniform(0.0, lx, ngrain), rng.uniform(0.0, height, ngrain)])
+    angles = rng.uniform(0.0, np.pi / 3.0, ngrain)  # hexagonal symmetry: 60 degrees cover all
+    offsets = rng.uniform(0.0, 1.0, (ngrain, 2))
+    half = 0.5 * math.hypot(lx, height) + 2.0 * d
+    n = int(math.ceil(half / d)) + 2
+    i, j = np.meshgrid(np.arange(-n, n + 1), np.arange(-n, n + 1), indexing="ij")
+    # hexagonal lattice points around the origin (lattice vectors d (1, 0) and d (1/2, sqrt(3)/2))
+    base = np.column_stack([(i + 0.5 * j).ravel(), (math.sqrt(3.0) / 2.0 * j).ravel()]) * d
+    centre = np.array([0.5 * lx, 0.5 * height])
+    pts, owner = [], []
+    for g in range(ngrain):
+        c, s_ = math.cos(angles[g]), math.sin(angles[g])
+        rot = (base + offsets[g] @ np.array([[d, 0.0], [0.5 * d, math.sqrt(3.0) / 2.0 * d]])) @ np.array(
+            [[c, s_], [-s_, c]]
+        ) + centre
+        inside = (rot[:, 0] >= 0) & (rot[:, 0] < lx) & (rot[:, 1] >= 0) & (rot[:, 1] < height)
+        rot = rot[inside]
+        dx = np.abs(rot[:, None, 0] - seeds[None, :, 0])
+        dx = np.minimum(dx, lx - dx)  # periodic along x
+        dist = np.sqrt(dx**2 + (rot[:, None, 1] - seeds[None, :, 1]) ** 2)
+        # each grain reaches half a diameter past its Voronoi boundary, so that the thinning
+        # below closes the boundary instead of leaving d-sized pores along it
+        mine = dist[:, g] <= dist.min(axis=1) + 0.5 * d
+        pts.append(rot[mine])
+        owner.append(np.full(int(mine.sum()), g))
+    p = np.concatenate(pts)
+    tree = cKDTree(np.column_stack([np.mod(p[:, 0], lx), p[:, 1] + 1e3]), boxsize=[lx, 1e12])
+    drop = np.zeros(len(p), bool)
+    # thin out grain boundaries (and the seam of a grain across x = 0): no two automata closer than 0.8 d
+    for a, b in sorted(map(tuple, tree.query_pairs(0.7 * d, output_type="ndarray"))):
+        if not drop[a]:
+            drop[b] = True
+    p = p[~drop]
+    pos = np.column_stack([p, np.zeros(len(p))])
+    return Atoms(f"H{len(pos)}", positions=pos, cell=[lx, height, d], pbc=[True, False, True])
+
+
+def _hex_columns(ncol: int, height: float, d: float, lx: float):
+    """ASE Atoms of a hexagonal block turned by 90 deg: close-packed columns along y.
+
+    ``ncol`` (even) columns, stretched along x to fill the period ``lx``
+    exactly; atoms d apart along each column, alternate columns offset by d/2.
+    """
+    from ase import Atoms
+
+    dx = lx / ncol  # = sqrt(3)/2 d within the fit's stretch
+    xs, ys = [], []
+    nrow = int(math.ceil(height / d)) + 1
+    for i in range(ncol):
+        for j in range(nrow):
+            xs.append(i * dx)
+            ys.append(j * d + (0.5 * d if i % 2 else 0.0))
+    pos = np.column_stack([xs, ys, np.zeros(len(xs))])
+    pos = pos[pos[:, 1] < height]
+    return Atoms(f"H{len(pos)}", positions=pos, cell=[lx, height, d], pbc=[True, False, True])
+
+
 def _fcc_block(nx: int, ncells: int, nz: int, d: float):
     """ASE Atoms of an FCC block with cube axes along x, y, z; nearest neighbours at d."""
     from ase.build import bulk
@@ -174,6 +254,8 @@ def build_system(
     width: float | None = None,
     hurst: float = 0.8,
     contact_fraction: float = 0.1,
+    texture: str = "aligned",
+    grain_size: float | None = None,
 ) -> MCAGeometry:
     """Build base / lower body / upper body / slider with rough interface surfaces.
 
@@ -200,6 +282,23 @@ def build_system(
     contact_fraction : float
         Fraction of surface columns (bins of width d) initially in contact;
         0 places the highest asperities just touching.
+    texture : {"aligned", "rotated"}
+        ``aligned``: both bodies with close-packed rows along x (the lower
+        body's surface period d is the upper body's: sliding is a washboard
+        at frequency V/d).  ``rotated`` (2D): the upper body's lattice turned
+        by 90 deg about the normal, close-packed rows along y, so its period
+        along x is sqrt(3)/2 d, incommensurate with the lower body's d.  The
+        box length is chosen (within 3 lattice periods of ``length``) so that
+        the rotated body fits it periodically with the smallest stretch along
+        x (below 1 %; the links take that length as their rest length, so the
+        body is stress-free).  ``polycrystalline`` (2D): both bodies made of
+        grains (periodic Voronoi cells along x, mean size ``grain_size``) of
+        randomly oriented lattices, seeds and angles drawn from ``rng`` after
+        the surface profiles; atoms of two grains closer than 0.8 d are
+        thinned out at the boundaries.  Every contact then sees its own row
+        period, so sliding has no common washboard frequency.
+    grain_size : float, optional
+        Mean grain size (nm) for ``polycrystalline`` (default 4 d).
 
     Returns
     -------
@@ -209,11 +308,20 @@ def build_system(
         raise ParameterError("dim", "2 or 3", dim)
     if not (0.0 < hurst <= 1.0):
         raise ParameterError("hurst", "a number in (0, 1]", hurst)
+    if texture not in ("aligned", "rotated", "polycrystalline"):
+        raise ParameterError("body_texture", "aligned, rotated or polycrystalline", texture)
+    if texture != "aligned" and dim != 2:
+        raise ParameterError("body_texture", "aligned in 3D (textured bodies are 2D only)", texture)
     if dim == 2:
         nx = max(4, int(round(length / d)))
         nrows = max(4, int(math.ceil(body_height / (math.sqrt(3.0) / 2.0 * d)))) + 4
+        if texture == "rotated":
+            nx, ncol = _rotated_fit(nx)
         lower, dy = _hex_block(nx, nrows + RIGID_ROWS, d)
-        upper, _ = _hex_block(nx, nrows + RIGID_ROWS, d)
+        if texture == "rotated":
+            upper = _hex_columns(ncol, (nrows + RIGID_ROWS) * dy, d, nx * d)
+        else:
+            upper, _ = _hex_block(nx, nrows + RIGID_ROWS, d)
         lx, lz = nx * d, d
         nsurf: int | tuple[int, int] = 4 * nx
         nz = 1
@@ -228,6 +336,11 @@ def build_system(
         nsurf = (4 * nx, 4 * nz)
     h_lo = self_affine_profile(nsurf, roughness_rms, hurst, rng)
     h_up = self_affine_profile(nsurf, roughness_rms, hurst, rng)
+    if texture == "polycrystalline":
+        gs = grain_size if grain_size is not None else 4.0 * d
+        height = (nrows + RIGID_ROWS) * dy
+        lower = _poly_block(lx, height, d, gs, rng)
+        upper = _poly_block(lx, height, d, gs, rng)
 
     def surf(h, pos):
         ix = np.floor(pos[:, 0] / lx * h.shape[0]).astype(int) % h.shape[0]
@@ -292,7 +405,8 @@ def build_system(
     box = np.array([[0.0, lx], [-d, ymax + 4.0 * d + body_height], zlim])
     atoms.cell = np.diag(box[:, 1] - box[:, 0])
     atoms.pbc = [True, False, True]
-    bonds = _neighbour_bonds(pos, mol, box, d, dim)
+    # grain boundaries leave gaps up to ~1.2 d: link across them too (links are stress-free at build)
+    bonds = _neighbour_bonds(pos, mol, box, d, dim, cutoff=1.2 if texture == "polycrystalline" else 1.05)
     interface = 0.5 * (y_mean_lo + (slider_bottom - body_height + shift))
     return MCAGeometry(
         atoms=atoms, bonds=bonds, dim=dim, d=d, box=box, interface_y=float(interface)
@@ -381,8 +495,9 @@ def _neighbour_bonds(
     dim: int,
     *,
     periodic_y: bool = False,
+    cutoff: float = 1.05,
 ) -> np.ndarray:
-    """Bonds between nearest neighbours (distance < 1.05 d) of the same body, plus attachments.
+    """Bonds between neighbours (distance < ``cutoff`` d) of the same body, plus attachments.
 
     Links inside a deformable body are type 1; links of a body to the base or
     to the slider are unbreakable attachments (type 3).  No links cross the
@@ -397,7 +512,7 @@ def _neighbour_bonds(
     shifted = pos - np.where(periodic, box[:, 0], 0.0)
     shifted = np.where(periodic, np.mod(shifted, boxsize), shifted + 1e6)
     tree = cKDTree(shifted, boxsize=boxsize)
-    pairs = tree.query_pairs(1.05 * d, output_type="ndarray")
+    pairs = tree.query_pairs(cutoff * d, output_type="ndarray")
     mi, mj = mol[pairs[:, 0]], mol[pairs[:, 1]]
     rigid = {MOL_BASE, MOL_SLIDER}
     same_body = (mi == mj) & ~np.isin(mi, list(rigid))
@@ -407,6 +522,25 @@ def _neighbour_bonds(
     sel = btype > 0
     out = np.column_stack([btype[sel], np.sort(pairs[sel], axis=1)])
     return out[np.lexsort((out[:, 2], out[:, 1]))]
+
+
+def _nearest_distances(geom: MCAGeometry) -> np.ndarray:
+    """Distance of every automaton to its nearest neighbour (nm), periodic along x (and z in 3D).
+
+    Automata closer than the contact diameter (only at grain boundaries of a polycrystal) get a
+    smaller contact diameter, so that no unlinked pair starts, or is left by a broken link,
+    overlapping: such an overlap would release a force far beyond any link force.
+    """
+    from scipy.spatial import cKDTree
+
+    box = geom.box
+    lengths = box[:, 1] - box[:, 0]
+    periodic = [True, False, geom.dim == 3]
+    boxsize = np.array([lengths[i] if periodic[i] else 1e12 for i in range(3)])
+    p = geom.atoms.positions - np.where(periodic, box[:, 0], 0.0)
+    p = np.where(periodic, np.mod(p, boxsize), p + 1e6)
+    dist, _ = cKDTree(p, boxsize=boxsize).query(p, k=2)
+    return dist[:, 1]
 
 
 def write_bpm_data(
@@ -468,9 +602,12 @@ def write_bpm_data(
     ]
     ids = np.arange(1, n + 1)
     dia = geom.d if diameter is None else diameter
+    dias = np.minimum(dia, _nearest_distances(geom))
+    # same mass for every automaton: LAMMPS sets m = density pi D^3 / 6 from each atom's diameter
+    dens = density * (dia / dias) ** 3
     body = [
-        f"{i} {m} {t} {dia:.10g} {density:.10g} {x:.10g} {y:.10g} {z:.10g}"
-        for i, m, t, (x, y, z) in zip(ids, mol, typ, pos, strict=True)
+        f"{i} {m} {t} {di:.10g} {rho:.10g} {x:.10g} {y:.10g} {z:.10g}"
+        for i, m, t, di, rho, (x, y, z) in zip(ids, mol, typ, dias, dens, pos, strict=True)
     ]
     lines += body
     if len(geom.bonds):

@@ -116,9 +116,12 @@ class BondLaw:
     setup : callable, optional
         ``setup() -> {name: str}``, run before LAMMPS starts (e.g. build and
         locate a plugin); extra deck variables, e.g. the plugin path.
+    deferred_fragment : str, optional
+        File in ``lammps_inputs/laws/`` that the Python driver includes at the
+        first step ``s`` of every chunk with ``(s + 1) % rebond_every == 0``
+        (the bpm laws' ``fix bond/create``; see ``bpm_relink.in`` for why).
     coordination_cap : bool
-        True when the law's links are LAMMPS bonds created by ``fix
-        bond/create`` (the decks then need bond slots per atom).
+        Informational: True when the law's links are LAMMPS bonds (bond slots per atom).
     doc : str
         One line for ``--help`` and the docs.
     """
@@ -130,6 +133,7 @@ class BondLaw:
     deck_variables: Callable[..., Mapping[str, str]]
     validate: Callable[[Any], None]
     setup: Callable[[], Mapping[str, str]] | None = None
+    deferred_fragment: str | None = None
     coordination_cap: bool = True
     doc: str = field(default="")
 
@@ -170,6 +174,7 @@ BOND_LAWS: Mapping[str, BondLaw] = MappingProxyType(
             map_material=_bpm_map,
             deck_variables=_render(_PLASTIC_VARIABLES),
             validate=_bpm_plastic_validate,
+            deferred_fragment="bpm_relink.in",
             doc="central elastic-perfectly plastic springs (LAMMPS BPM), nu fixed at 1/3",
         ),
         "bpm/rotational": BondLaw(
@@ -180,6 +185,7 @@ BOND_LAWS: Mapping[str, BondLaw] = MappingProxyType(
             map_material=_bpm_map,
             deck_variables=_render(_ROTATIONAL_VARIABLES),
             validate=_bpm_rotational_validate,
+            deferred_fragment="bpm_relink.in",
             doc="normal/shear/bending springs (LAMMPS BPM), brittle, nu < 1/3",
         ),
         # movable cellular automata (tribolmp plugin, C++): the pair style, its state fix and

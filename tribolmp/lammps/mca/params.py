@@ -49,6 +49,16 @@ class MCAParams:
     body_height: float = _scene_field(Nanoscale, "body_height")
     roughness_rms: float = _scene_field(Nanoscale, "roughness_rms")
     hurst: float = param(0.8, lo=0.0, hi=1.0, lo_open=True, doc="Hurst exponent of the surfaces.")
+    body_texture: str = param(
+        "auto",
+        choices=("auto", "aligned", "rotated", "polycrystalline"),
+        doc="Lattices of the two bodies: polycrystalline (2D: both bodies of randomly oriented "
+        "grains, no washboard at V/d), rotated (2D: the upper body turned by 90 deg), aligned (one "
+        "orientation, the old commensurate setup), auto (polycrystalline in 2D, aligned in 3D).",
+    )
+    grain_size: float = param(
+        10e-9, unit="m", lo=0.0, lo_open=True, hi=1e-5, doc="Mean grain size (polycrystalline)."
+    )
     youngs_modulus: float = _scene_field(Material, "youngs_modulus")
     poisson_ratio: float = _scene_field(Material, "poisson_ratio")
     yield_strength: float = _scene_field(Material, "yield_strength")
@@ -125,6 +135,16 @@ class MCAParams:
                 f"a value <= body_height/4 ({self.body_height / 4:g} m)",
                 self.roughness_rms,
             )
+        if self.body_texture in ("rotated", "polycrystalline") and self.dim == 3:
+            raise ParameterError(
+                "body_texture", "aligned or auto in 3D (textured bodies are 2D only)", self.body_texture
+            )
+        if self.texture == "polycrystalline" and not (3 * d <= self.grain_size <= self.box_length):
+            raise ParameterError(
+                "grain_size",
+                f"a value in [3 automaton diameters, box_length] ([{3 * d:g}, {self.box_length:g}] m)",
+                self.grain_size,
+            )
         spec = self.material()  # validates the material and the law's own limits
         coeff = get_law(self.bond_style).map_material(spec)
         if self.dt_factor > 0.5 * coeff.dt_max_factor:
@@ -144,6 +164,13 @@ class MCAParams:
             raise ParameterError(
                 "duration", f"a value >= ramp_time ({self.ramp_time:g} s)", self.duration
             )
+
+    @property
+    def texture(self) -> str:
+        """The body texture actually built (``auto`` resolved)."""
+        if self.body_texture == "auto":
+            return "polycrystalline" if self.dim == 2 else "aligned"
+        return self.body_texture
 
     def material(self) -> MaterialSpec:
         """The :class:`MaterialSpec` of the bodies."""

@@ -59,6 +59,8 @@ def prepare(params: MCAParams, out: Path, seed: int, overrides: dict[str, Any]) 
         width=to_lammps(params.box_width, "length"),
         hurst=params.hurst,
         rng=rng,
+        texture=params.texture,
+        grain_size=to_lammps(params.grain_size, "length"),
     )
     data = write_bpm_data(
         out / "system.data", geom, density=c.density_column, diameter=c.contact_diameter
@@ -112,6 +114,7 @@ def prepare(params: MCAParams, out: Path, seed: int, overrides: dict[str, Any]) 
         "lammps_seed": lmp_seed,
         "params": dataclasses.asdict(params),
         "law": params.bond_style,
+        "body_texture": params.texture,
         "mapping": {
             k: (float(v) if isinstance(v, (float, np.floating)) else v)
             for k, v in c.as_dict().items()

@@ -179,13 +179,25 @@ def _frames(text: str) -> list[tuple[int, str]]:
     return frames
 
 
+def _first_rows(rows: list[tuple[float, str]]) -> list[str]:
+    """The first row of each time (a ``run`` command repeats the row of its first step)."""
+    seen: set[str] = set()
+    kept = []
+    for _t, ln in rows:
+        key = ln.split(",", 1)[0]
+        if key not in seen:
+            seen.add(key)
+            kept.append(ln)
+    return kept
+
+
 def truncate_outputs(out: Path, step: int, dt_s: float) -> None:
     """Cut ``friction.csv`` and ``traj.lammpstrj`` back to ``step`` (the resumed run writes the rest)."""
     out = Path(out)
     csv = out / "friction.csv"
     if csv.exists():
         t_max = step * dt_s * (1 + 1e-9)
-        rows = [ln for t, ln in _csv_rows(csv.read_text()) if t <= t_max]
+        rows = _first_rows([(t, ln) for t, ln in _csv_rows(csv.read_text()) if t <= t_max])
         atomic_write_text(csv, "\n".join([CSV_TITLE, *rows]) + "\n")
     traj = out / "traj.lammpstrj"
     if traj.exists():
@@ -204,13 +216,7 @@ def finalize_outputs(out: Path, dump_every: int) -> None:
     out = Path(out)
     csv = out / "friction.csv"
     if csv.exists():
-        seen: set[str] = set()
-        kept = []
-        for _t, ln in _csv_rows(csv.read_text()):
-            key = ln.split(",", 1)[0]
-            if key not in seen:
-                seen.add(key)
-                kept.append(ln)
+        kept = _first_rows(_csv_rows(csv.read_text()))
         atomic_write_text(csv, "\n".join([CSV_TITLE, *kept]) + "\n")
     traj = out / "traj.lammpstrj"
     if traj.exists():

@@ -1,0 +1,58 @@
+"""Incommensurate bodies (issue 13 item 4): mu(t) has no spectral line at V/d.
+
+With both bodies on one lattice in one orientation (``body_texture="aligned"``, the old setup)
+every asperity slides over the same rows in phase, and mu(t) is a washboard at the frequency V/d
+(band/flank power ratio 19-100 at the default scene's size).  With the default texture
+(``auto`` = polycrystalline in 2D: grains of randomly oriented lattices in both bodies, drawn
+from the run's Generator) each contact sees its own row period and the line disappears.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from tribolmp.lammps.mca import params_from_scene, run_mca
+from tribolmp.scene import default_scene
+
+pytestmark = [pytest.mark.lammps, pytest.mark.slow]
+
+
+def washboard_ratio(out, *, t0: float, velocity: float, d: float) -> float:
+    """Mean periodogram of mu(t) within 15 % of V/d over that of its flanks (0.55-0.8, 1.2-1.45 V/d).
+
+    About 1 for a spectrum without a line at V/d (a red spectrum gives somewhat less); a
+    washboard puts most of the variance of mu(t) into the band.
+    """
+    fr = np.loadtxt(out / "friction.csv", delimiter=",", skiprows=1)
+    t, f, n = fr[:, 0], fr[:, 1], fr[:, 2]
+    sel = t > t0  # after the first contact transient
+    mu = f[sel] / n[sel].mean()
+    mu = mu - np.polyval(np.polyfit(t[sel], mu, 1), t[sel])
+    ps = np.abs(np.fft.rfft(mu * np.hanning(len(mu)))) ** 2
+    r = np.fft.rfftfreq(len(mu), t[1] - t[0]) / (velocity / d)
+    band = (r >= 0.85) & (r <= 1.15)
+    flank = ((r >= 0.55) & (r < 0.8)) | ((r > 1.2) & (r <= 1.45))
+    return float(ps[band].mean() / ps[flank].mean())
+
+
+@pytest.mark.parametrize("texture", ["auto", "aligned"])
+def test_no_washboard_line_at_v_over_d(texture, tmp_path, monkeypatch, lammps_available):
+    from tribolmp.lammps.mca import driver
+
+    monkeypatch.setattr(driver, "compute_rates_if_available", lambda out: None)
+    # the default scene's nanoscale size (100 nm box, 25 nm bodies, ~900-1100 automata), 5 ns:
+    # 4 ns of sliding after the first nanosecond give 0.25 GHz bins around V/d = 2 GHz
+    params = params_from_scene(default_scene()).replace(duration=5e-9, body_texture=texture)
+    run_mca(params, tmp_path, seed=7)
+    ratio = washboard_ratio(
+        tmp_path, t0=1e-9, velocity=params.sliding_velocity, d=params.automaton_diameter
+    )
+    if texture == "auto":
+        # without a line the ratio is ~1 up to periodogram scatter: measured 0.49, 0.68 and 1.41 for
+        # seeds 7, 5 and 3; 3 leaves a margin above that and is 6-30x below the washboard's 19-100
+        assert ratio < 3.0, ratio
+    else:
+        # the documented contrast, i.e. the old single-orientation setup the first case fails on:
+        # measured 100 (seed 7) and 19 (seed 3)
+        assert ratio > 10.0, ratio
