@@ -2,9 +2,11 @@
 
 With both bodies on one lattice in one orientation (``body_texture="aligned"``, the old setup)
 every asperity slides over the same rows in phase, and mu(t) is a washboard at the frequency V/d
-(band/flank power ratio 19-100 at the default scene's size).  With the default texture
-(``auto`` = polycrystalline in 2D: grains of randomly oriented lattices in both bodies, drawn
-from the run's Generator) each contact sees its own row period and the line disappears.
+(band/flank power ratio 19-100 at the default scene's size).  With polycrystalline bodies
+(grains of randomly oriented lattices in both bodies, drawn from the run's Generator) each
+contact sees its own row period and the line disappears.  The 2D default (``auto`` = rotated:
+the upper body turned by 90 degrees) weakens it to ~3 (documented in docs/mca.md, not asserted
+here as "no line").
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ pytestmark = [pytest.mark.lammps, pytest.mark.slow]
 
 
 def washboard_ratio(out, *, t0: float, velocity: float, d: float) -> float:
-    """Mean periodogram of mu(t) within 15 % of V/d over that of its flanks (0.55-0.8, 1.2-1.45 V/d).
+    """Mean periodogram of mu(t) within 15 % of V/d over its flanks (0.55-0.8, 1.2-1.45 V/d).
 
     About 1 for a spectrum without a line at V/d (a red spectrum gives somewhat less); a
     washboard puts most of the variance of mu(t) into the band.
@@ -36,7 +38,7 @@ def washboard_ratio(out, *, t0: float, velocity: float, d: float) -> float:
     return float(ps[band].mean() / ps[flank].mean())
 
 
-@pytest.mark.parametrize("texture", ["auto", "aligned"])
+@pytest.mark.parametrize("texture", ["polycrystalline", "aligned"])
 def test_no_washboard_line_at_v_over_d(texture, tmp_path, monkeypatch, lammps_available):
     from tribolmp.lammps.mca import driver
 
@@ -48,7 +50,7 @@ def test_no_washboard_line_at_v_over_d(texture, tmp_path, monkeypatch, lammps_av
     ratio = washboard_ratio(
         tmp_path, t0=1e-9, velocity=params.sliding_velocity, d=params.automaton_diameter
     )
-    if texture == "auto":
+    if texture == "polycrystalline":
         # without a line the ratio is ~1 up to periodogram scatter: measured 0.49, 0.68 and 1.41 for
         # seeds 7, 5 and 3; 3 leaves a margin above that and is 6-30x below the washboard's 19-100
         assert ratio < 3.0, ratio

@@ -63,6 +63,7 @@ read_data {data} extra/bond/per/atom 4 extra/special/per/atom 8
 group mobile type 1
 variable mca_context string friction
 include {v['lawdir']}/{v['bond']}.in
+include {v['lawdir']}/bpm_relink.in
 neighbor 0.5 bin
 neigh_modify every 1 delay 0 check yes
 group moving id 2

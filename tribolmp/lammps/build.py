@@ -159,16 +159,17 @@ def _rotated_fit(nx: int) -> tuple[int, int]:
 
     Columns of the 90-degree rotated hexagonal lattice are sqrt(3)/2 d apart
     and alternate, so the rotated body repeats after an even number of them;
-    of the box lengths within 3 spacings of ``nx`` the one with the smallest
-    stretch is taken.
+    of the box lengths within 3 spacings of ``nx`` that need a stretch below 1 %,
+    the nearest is taken (else the one with the smallest stretch).
     """
-    best = None
+    fits = []
     for n in range(max(4, nx - 3), nx + 4):
         ncol = 2 * max(2, round(n / math.sqrt(3.0)))
         stretch = abs(n / (ncol * math.sqrt(3.0) / 2.0) - 1.0)
-        if best is None or stretch < best[0]:
-            best = (stretch, n, ncol)
-    return best[1], best[2]
+        # below 1 % stretch: the box nearest the requested one; else the smallest stretch
+        fits.append((stretch >= 0.01, abs(n - nx) if stretch < 0.01 else stretch, n, ncol))
+    _, _, n, ncol = min(fits)
+    return n, ncol
 
 
 def _poly_block(lx: float, height: float, d: float, grain_size: float, rng: np.random.Generator):

@@ -52,9 +52,10 @@ class MCAParams:
     body_texture: str = param(
         "auto",
         choices=("auto", "aligned", "rotated", "polycrystalline"),
-        doc="Lattices of the two bodies: polycrystalline (2D: both bodies of randomly oriented "
-        "grains, no washboard at V/d), rotated (2D: the upper body turned by 90 deg), aligned (one "
-        "orientation, the old commensurate setup), auto (polycrystalline in 2D, aligned in 3D).",
+        doc="Lattices of the two bodies: rotated (2D: the upper body turned by 90 deg, washboard "
+        "at V/d 6-30x weaker), polycrystalline (2D: both bodies of randomly oriented grains, no "
+        "washboard, but weak grain boundaries that compact under load), aligned (one orientation, "
+        "the old commensurate setup), auto (rotated in 2D, aligned in 3D).",
     )
     grain_size: float = param(
         10e-9, unit="m", lo=0.0, lo_open=True, hi=1e-5, doc="Mean grain size (polycrystalline)."
@@ -169,7 +170,7 @@ class MCAParams:
     def texture(self) -> str:
         """The body texture actually built (``auto`` resolved)."""
         if self.body_texture == "auto":
-            return "polycrystalline" if self.dim == 2 else "aligned"
+            return "rotated" if self.dim == 2 else "aligned"
         return self.body_texture
 
     def material(self) -> MaterialSpec:

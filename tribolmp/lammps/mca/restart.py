@@ -180,7 +180,7 @@ def _frames(text: str) -> list[tuple[int, str]]:
 
 
 def _first_rows(rows: list[tuple[float, str]]) -> list[str]:
-    """The first row of each time (a ``run`` command repeats the row of its first step)."""
+    """Keep the first row of each time (a ``run`` command repeats the row of its first step)."""
     seen: set[str] = set()
     kept = []
     for _t, ln in rows:
