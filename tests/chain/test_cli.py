@@ -20,7 +20,14 @@ def test_plan_json_lists_every_stage(cli):
     res = cli("run", scene_path("lubricated"), "--plan", "--json")
     assert res.returncode == 0, res.stderr
     plan = {s["name"]: s for s in res.json()["plan"]}
-    assert list(plan) == ["nanoscale", "topography", "contact", "lubrication", "macroscale", "tribospectroscopy"]
+    assert list(plan) == [
+        "nanoscale",
+        "topography",
+        "contact",
+        "lubrication",
+        "macroscale",
+        "tribospectroscopy",
+    ]
     assert plan["lubrication"]["run"] and not plan["nanoscale"]["run"]
 
 
@@ -48,7 +55,7 @@ def test_snapshot_without_nanoscale_one_line_error(cli, tmp_path):
 
 
 def test_bad_value_one_line_error(cli, tmp_path):
-    path = _write(tmp_path, '[contact]\ntolerance = -1\n')
+    path = _write(tmp_path, "[contact]\ntolerance = -1\n")
     assert_one_line_error(cli("run", path), "[contact].tolerance")
 
 
@@ -70,11 +77,17 @@ def test_bench_collects_existing_tables(cli, tmp_path):
     assert res.returncode == 0, res.stderr
     data = res.json()
     (entry,) = data["benchmarks"]
-    assert entry["name"] == "toy" and entry["tables"][0]["rows"] == [["64", "0.5", "0.1"], ["128", "2.0", "0.025"]]
+    assert entry["name"] == "toy" and entry["tables"][0]["rows"] == [
+        ["64", "0.5", "0.1"],
+        ["128", "2.0", "0.025"],
+    ]
     md = (tmp_path / "b" / "bench.md").read_text()
     assert "| 128 | 2 | 0.025 |" in md  # numbers shortened to 4 significant digits in markdown
     long_rows = (tmp_path / "b" / "bench.csv").read_text().splitlines()
-    assert long_rows[0] == "benchmark,file,row,column,value" and "toy,toy.csv,1,rel_error,0.025" in long_rows
+    assert (
+        long_rows[0] == "benchmark,file,row,column,value"
+        and "toy,toy.csv,1,rel_error,0.025" in long_rows
+    )
 
 
 def test_bench_run_reports_a_failing_benchmark(cli, tmp_path):
@@ -103,8 +116,17 @@ def test_workflow_script_plans_the_default_scene():
     from pathlib import Path
 
     script = Path(__file__).resolve().parents[2] / "workflows" / "multiscale_chain.py"
-    proc = subprocess.run([sys.executable, str(script), "--plan"], capture_output=True, text=True, timeout=120)
+    proc = subprocess.run(
+        [sys.executable, str(script), "--plan"], capture_output=True, text=True, timeout=120
+    )
     assert proc.returncode == 0, proc.stderr
     lines = proc.stdout.splitlines()
-    assert [ln.split()[0] for ln in lines] == ["nanoscale", "topography", "contact", "lubrication", "macroscale", "tribospectroscopy"]
+    assert [ln.split()[0] for ln in lines] == [
+        "nanoscale",
+        "topography",
+        "contact",
+        "lubrication",
+        "macroscale",
+        "tribospectroscopy",
+    ]
     assert lines[3].split()[1] == "skip" and lines[0].split()[1] == "RUN"

@@ -1,4 +1,4 @@
-"""The squeeze film feeds the rigid body: planner keys, cache invalidation and the physics direction."""
+"""The squeeze film feeds the rigid body: planner keys, cache invalidation, physics direction."""
 
 from __future__ import annotations
 
@@ -19,7 +19,9 @@ def _lubricated():
 def _dry(scene):
     """Return the same body without oil (and without asking for the lubrication output)."""
     req = tuple(r for r in scene.outputs.requested if r != "lubrication")
-    return dataclasses.replace(scene, lubricant=None, outputs=dataclasses.replace(scene.outputs, requested=req))
+    return dataclasses.replace(
+        scene, lubricant=None, outputs=dataclasses.replace(scene.outputs, requested=req)
+    )
 
 
 def test_dry_macroscale_key_inputs_unchanged():
@@ -27,7 +29,14 @@ def test_dry_macroscale_key_inputs_unchanged():
     # section, option or source folder would silently invalidate every existing dry cache.
     for name in ("rates_given", "default"):
         sp = plan_scene(load_scene(scene_path(name)))["macroscale"]
-        assert sp.sections[:6] == ("kinematics", "load", "geometry", "material", "counter_material", "contact")
+        assert sp.sections[:6] == (
+            "kinematics",
+            "load",
+            "geometry",
+            "material",
+            "counter_material",
+            "contact",
+        )
         assert "lubricant" not in sp.sections and "roughness" not in sp.sections
         assert set(sp.options) == {"contact_law"}
 
@@ -44,7 +53,10 @@ def test_viscosity_invalidates_macroscale_not_contact(tmp_path, calls):  # noqa:
     scene = _lubricated()
     out = tmp_path / "run"
     first = runner_mod.run_chain(scene, out, quiet=True, figures=False)
-    thicker = dataclasses.replace(scene, lubricant=dataclasses.replace(scene.lubricant, viscosity=2 * scene.lubricant.viscosity))
+    thicker = dataclasses.replace(
+        scene,
+        lubricant=dataclasses.replace(scene.lubricant, viscosity=2 * scene.lubricant.viscosity),
+    )
     second = runner_mod.run_chain(thicker, out, quiet=True, figures=False)
     assert second.result("macroscale").key != first.result("macroscale").key
     assert calls["macroscale"] == 2 and calls["lubrication"] == 2
@@ -53,8 +65,16 @@ def test_viscosity_invalidates_macroscale_not_contact(tmp_path, calls):  # noqa:
 
 def test_film_makes_first_slip_earlier(tmp_path):
     wet_scene = _lubricated()
-    wet = runner_mod.run_chain(wet_scene, tmp_path / "wet", quiet=True, figures=False).result("macroscale").record
-    dry = runner_mod.run_chain(_dry(wet_scene), tmp_path / "dry", quiet=True, figures=False).result("macroscale").record
+    wet = (
+        runner_mod.run_chain(wet_scene, tmp_path / "wet", quiet=True, figures=False)
+        .result("macroscale")
+        .record
+    )
+    dry = (
+        runner_mod.run_chain(_dry(wet_scene), tmp_path / "dry", quiet=True, figures=False)
+        .result("macroscale")
+        .record
+    )
     w, d = wet["values"], dry["values"]
     assert "film_rupture_gap_m" not in d and d["first_slip_time_s"] is not None
     # No [roughness]: the film ruptures where it started.
@@ -78,8 +98,14 @@ def test_thin_rupture_gap_reports_film_still_thinning(tmp_path):
     # h_c (0.1 um) below the Hertz indentation at 10 N (~0.96 um): the solid can never carry the
     # load, so the film keeps thinning; the stage must say so and still run (no exception).
     scene = _lubricated()
-    scene = dataclasses.replace(scene, lubricant=dataclasses.replace(scene.lubricant, film_thickness=1e-7))
-    w = runner_mod.run_chain(scene, tmp_path / "o", quiet=True, figures=False).result("macroscale").record
+    scene = dataclasses.replace(
+        scene, lubricant=dataclasses.replace(scene.lubricant, film_thickness=1e-7)
+    )
+    w = (
+        runner_mod.run_chain(scene, tmp_path / "o", quiet=True, figures=False)
+        .result("macroscale")
+        .record
+    )
     assert w["values"]["squeeze_status"] == 1
     assert "film still thinning" in w["message"] and "\n" not in w["message"]
     assert w["values"]["final_load_share"] < 1.0

