@@ -327,16 +327,16 @@ def build_dataclass(cls: type, data: dict, prefix: str = "", source: str | None 
     if not isinstance(data, dict):
         raise ParameterError(prefix.rstrip("."), "a table", data, source)
     names = {f.name: f for f in dataclasses.fields(cls) if f.init}
-    aliases = getattr(cls, "__field_aliases__", {})
-    data = {aliases.get(k, k) if k not in names else k: v for k, v in data.items()}
+    aliases = getattr(cls, "__field_aliases__", {})  # old key -> field (params.renamed handles them)
     for key in data:
-        if key not in names:
+        if key not in names and key not in aliases:
             raise ParameterError(
                 prefix + str(key), f"one of the known keys {sorted(names)}", "unknown key", source
             )
+    given = {aliases.get(k, k) for k in data}
     for name, f in names.items():
         if (
-            name not in data
+            name not in given
             and f.default is dataclasses.MISSING
             and f.default_factory is dataclasses.MISSING
         ):

@@ -170,3 +170,17 @@ def test_bond_style_choices_are_the_law_registry():
         "choices"
     ]
     assert tuple(choices) == tuple(law_names())
+
+
+def test_renamed_scene_key_keeps_working():
+    # [nanoscale].roughness_rms is now rms_height (the [roughness] name); the old key still parses
+    # and reaches the MCA run.
+    from tribolmp.lammps.mca import params_from_scene
+    from tribolmp.scene import parse_scene
+
+    old = parse_scene({"nanoscale": {"roughness_rms": 1e-9}})
+    new = parse_scene({"nanoscale": {"rms_height": 1e-9}})
+    assert old.nanoscale == new.nanoscale and old.nanoscale.roughness_rms == 1e-9
+    assert params_from_scene(old).roughness_rms == 1e-9
+    with pytest.raises(SceneError, match=r"\[nanoscale\]\.roughness_rms"):
+        parse_scene({"nanoscale": {"roughness_rms": -1.0}})

@@ -15,7 +15,7 @@ import typing
 from dataclasses import dataclass
 
 from ..errors import ParameterError
-from ..params import param, validate_dataclass
+from ..params import param, renamed, validate_dataclass
 from ..records import RATES_GROUPS
 from ..records import Rates as RatesRecord
 
@@ -185,6 +185,7 @@ class Polishing(Section):
     duration: float = param(60.0, unit="s", lo=0.0, lo_open=True, hi=1e7, doc="Polishing time.")
 
 
+@renamed(roughness_rms="rms_height")  # the old key keeps working (docs/conventions.md)
 @dataclass(frozen=True)
 class Nanoscale(Section):
     """``[nanoscale]``: the MCA friction experiment on LAMMPS."""
@@ -198,7 +199,7 @@ class Nanoscale(Section):
     duration: float = param(2e-9, unit="s", lo=0.0, lo_open=True, hi=1e-5, doc="Simulated time.")
     box_length: float = param(100e-9, unit="m", lo=0.0, lo_open=True, hi=1e-5, doc="Periodic length along sliding.")
     body_height: float = param(25e-9, unit="m", lo=0.0, lo_open=True, hi=1e-5, doc="Height of each deformable body.")
-    roughness_rms: float = param(2e-9, unit="m", lo=0.0, hi=1e-6, doc="Initial interface roughness Rq.")
+    rms_height: float = param(2e-9, unit="m", lo=0.0, hi=1e-6, doc="Initial interface roughness Rq (old key roughness_rms).")
     preset: str = param("smoke", choices=("smoke", "default", "paper"), doc="Size/time preset.")
     ranks: int = param(1, lo=1, hi=1024, doc="MPI ranks (mpiexec -n).")
 

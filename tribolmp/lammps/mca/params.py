@@ -47,7 +47,7 @@ class MCAParams:
         10e-9, unit="m", lo=0.0, lo_open=True, hi=1e-5, doc="Periodic width along z (3D)."
     )
     body_height: float = _scene_field(Nanoscale, "body_height")
-    roughness_rms: float = _scene_field(Nanoscale, "roughness_rms")
+    roughness_rms: float = _scene_field(Nanoscale, "rms_height")
     hurst: float = param(0.8, lo=0.0, hi=1.0, lo_open=True, doc="Hurst exponent of the surfaces.")
     body_texture: str = param(
         "auto",
@@ -247,9 +247,9 @@ def params_from_scene(scene) -> MCAParams:
     if nano is None:
         raise ParameterError("[nanoscale]", "a [nanoscale] section in the scene", None)
     mat = scene.material
-    shared = {f.name for f in dataclasses.fields(Nanoscale)} & {
-        f.name for f in dataclasses.fields(MCAParams)
-    }
+    # Old names of renamed scene fields (e.g. roughness_rms, now [nanoscale].rms_height) still read.
+    scene_names = {f.name for f in dataclasses.fields(Nanoscale)} | set(getattr(Nanoscale, "__field_aliases__", {}))
+    shared = scene_names & {f.name for f in dataclasses.fields(MCAParams)}
     shared.discard("preset")
     return preset_params(
         nano.preset,
