@@ -60,13 +60,25 @@ def _cli(*args: str) -> list[str]:
     return [sys.executable, "-m", "tribolmp", *args]
 
 
+def _stamp(path: Path) -> tuple[int, int] | None:
+    try:
+        st = path.stat()
+    except OSError:
+        return None
+    return st.st_mtime_ns, st.st_size
+
+
 def _interrupt(cmd: list[str], out: Path, sig: int, delay: float, *, wait_for: str) -> int:
-    """Start ``cmd``, wait until ``out/wait_for`` exists, ``delay`` s more, then send ``sig``."""
+    """Start ``cmd``; once LAMMPS writes (``out/wait_for`` exists and friction.csv changed since
+    the start), wait ``delay`` s more, then send ``sig`` to its process group."""
+    before = _stamp(out / "friction.csv")
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)
     t0 = time.monotonic()
-    while not list(out.glob(wait_for)) and proc.poll() is None and time.monotonic() - t0 < 240:
-        time.sleep(0.05)
+    while proc.poll() is None and time.monotonic() - t0 < 240:
+        if list(out.glob(wait_for)) and _stamp(out / "friction.csv") not in (None, before):
+            break
+        time.sleep(0.02)
     time.sleep(delay)
     if proc.poll() is None:
         os.killpg(proc.pid, sig)

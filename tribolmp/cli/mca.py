@@ -65,6 +65,14 @@ def configure(parser: argparse.ArgumentParser) -> None:
         "--resume", action="store_true", help="continue from the newest restart file in --out"
     )
     r.add_argument("--json", action="store_true", help="print the result as JSON")
+    r.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="expert: replace a deck variable (LAMMPS nano units) after validation; "
+        "recorded in meta.json (repeatable)",
+    )
 
     m = sub.add_parser(
         "material-test",
@@ -119,6 +127,19 @@ def _material_test(args: argparse.Namespace) -> int:
     return 0
 
 
+def _overrides(items: list[str]) -> dict[str, str]:
+    """``--set NAME=VALUE`` pairs; one-line error for a malformed one."""
+    from ..errors import ParameterError
+
+    out = {}
+    for item in items:
+        name, sep, value = item.partition("=")
+        if not sep or not name or not value:
+            raise ParameterError("--set", "NAME=VALUE (a deck variable)", item)
+        out[name] = value
+    return out
+
+
 def _run(args: argparse.Namespace) -> int:
     """Compose scene -> params -> run_mca; no physics here."""
     from ..lammps.mca import params_from_scene, preset_params, run_mca
@@ -148,7 +169,9 @@ def _run(args: argparse.Namespace) -> int:
     seed = args.seed if args.seed is not None else scene.scene.seed
     out = prepare_dir(args.out, "--out")
     with DirLock(out, what="output folder"):
-        res = run_mca(params, out, seed=seed, resume=args.resume, np=args.np)
+        res = run_mca(
+            params, out, seed=seed, resume=args.resume, np=args.np, overrides=_overrides(args.set)
+        )
     payload = {"rates_json": res.get("rates_path"), "out_dir": res["out_dir"]}
     payload.update({k: res.get(k) for k in JSON_FIELDS})
     payload.update(
