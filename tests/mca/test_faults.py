@@ -42,7 +42,9 @@ def _table(out: Path) -> np.ndarray:
     ],
     ids=["nan", "lost-atoms"],
 )
-def test_real_fault_is_one_line_exit_3_and_recoverable(fault, cause, cli, tmp_path, lammps_available):
+def test_real_fault_is_one_line_exit_3_and_recoverable(
+    fault, cause, cli, tmp_path, lammps_available
+):
     out = tmp_path / "run"
     base = ("mca", "run", "--preset", "smoke", "--time", "0.3e-9", "--out", out)
     sets = [a for f in fault for a in ("--set", f)]
@@ -56,7 +58,7 @@ def test_real_fault_is_one_line_exit_3_and_recoverable(fault, cause, cli, tmp_pa
 
 
 def _rank_pids(out: Path) -> list[int]:
-    """PIDs of the MPI ranks running ``python -m tribolmp.lammps.mca OUT`` (this test's folder only)."""
+    """PIDs of the ranks running ``python -m tribolmp.lammps.mca OUT`` (this test's OUT only)."""
     pids = []
     for entry in Path("/proc").iterdir():
         if not entry.name.isdigit():
@@ -85,7 +87,9 @@ def test_two_ranks_killed_and_resumed(cli, tmp_path, lammps_available):
         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
     )
     t0 = time.monotonic()
-    while not list(out.glob("restart.*.bin")) and proc.poll() is None and time.monotonic() - t0 < 300:
+    while proc.poll() is None and time.monotonic() - t0 < 300:
+        if list(out.glob("restart.*.bin")):
+            break
         time.sleep(0.1)
     ranks = _rank_pids(out)
     assert ranks, "no MPI rank found"

@@ -69,8 +69,10 @@ def _stamp(path: Path) -> tuple[int, int] | None:
 
 
 def _interrupt(cmd: list[str], out: Path, sig: int, delay: float, *, wait_for: str) -> int:
-    """Start ``cmd``; once LAMMPS writes (``out/wait_for`` exists and friction.csv changed since
-    the start), wait ``delay`` s more, then send ``sig`` to its process group."""
+    """Start ``cmd`` and send ``sig`` to its process group ``delay`` s after LAMMPS writes.
+
+    "LAMMPS writes": ``out/wait_for`` exists and friction.csv changed since the start.
+    """
     before = _stamp(out / "friction.csv")
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)
