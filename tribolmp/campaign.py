@@ -365,7 +365,7 @@ def run_sweep(
     return res
 
 
-def make_client(workers: int = 2, scheduler: str | None = None):
+def make_client(workers: int = 2, scheduler: str | None = None, resources: Mapping[str, float] | None = None):
     """The sweep's Dask client: ``(client, cluster)``; ``cluster`` is None with ``scheduler``.
 
     The LocalCluster is bound to 127.0.0.1 with no dashboard, one thread per
@@ -380,8 +380,12 @@ def make_client(workers: int = 2, scheduler: str | None = None):
         # Loopback only (scheduler, workers and their HTTP endpoints on 127.0.0.1, free ports: a busy
         # 8787 is no obstacle): nothing listens beyond this machine.  One thread per worker
         # process: the chain's numpy/LAMMPS work is not GIL-free, processes give real parallelism.
+        # Tasks that reserve resources (--resources MPI=R) need workers that have them: each local
+        # worker gets exactly one task's worth, so a worker runs one such task at a time.
+        extra = {"resources": dict(resources)} if resources else {}
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                               dashboard_address="127.0.0.1:0", worker_dashboard_address="127.0.0.1:0", silence_logs=40)
+                               dashboard_address="127.0.0.1:0", worker_dashboard_address="127.0.0.1:0", silence_logs=40,
+                               **extra)
         client = Client(cluster)
     else:
         try:
@@ -394,7 +398,7 @@ def make_client(workers: int = 2, scheduler: str | None = None):
 def _run_on_dask(todo, base, source, out, cache, workers, scheduler, resources, bar, rows) -> int:
     from distributed import as_completed
 
-    client, cluster = make_client(workers, scheduler)
+    client, cluster = make_client(workers, scheduler, resources)
     try:
         n_workers = len(client.scheduler_info().get("workers", {})) or workers
         labels = {p["id"]: _label(p["vary"], p["seed"]) for p in todo}

@@ -198,19 +198,28 @@ def test_a_killed_sweep_resumes_and_a_second_sweep_reuses_shared_points(tmp_path
         assert set(statuses.values()) == ({"cached"} if shared else {"computed"}), statuses
 
 
-def test_local_cluster_listens_on_loopback_only():
-    """No network: the scheduler, the workers and their HTTP endpoints bind 127.0.0.1 (free ports, not a fixed 8787)."""
+def _one() -> int:
+    return 1
+
+
+def test_local_cluster_listens_on_loopback_only_and_serves_resource_tasks():
+    """No network: the scheduler, the workers and their HTTP endpoints bind 127.0.0.1 (free ports, not a fixed 8787).
+
+    A task that reserves resources (--resources MPI=2, for [nanoscale].ranks = 2) runs on the local workers
+    (they are given those resources; without them such a task would wait forever).
+    """
     import psutil
 
     from tribolmp.campaign import make_client
 
-    client, cluster = make_client(1)
+    client, cluster = make_client(1, resources={"MPI": 2})
     try:
         me = psutil.Process()
         pids = {me.pid} | {p.pid for p in me.children(recursive=True)}
         listening = [c for c in psutil.net_connections(kind="inet") if c.status == psutil.CONN_LISTEN and c.pid in pids]
         assert listening, "found no listening socket of the cluster"
         assert all(c.laddr.ip == "127.0.0.1" for c in listening), listening
+        assert client.submit(_one, resources={"MPI": 2}, pure=False).result(timeout=120) == 1
     finally:
         client.close()
         cluster.close()
