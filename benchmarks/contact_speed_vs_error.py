@@ -7,11 +7,14 @@ Tables (printed, and written as CSV into ``benchmarks/results/``):
    :mod:`tribolmp.models.contact.reference`); the BEM is non-adhesive, so JKR
    has MDR rows only.
 2. ``contact_bem_vs_tamaas.csv`` -- our FFT/CG solver against tamaas 2.9
-   (optional; pip-installed for the benchmark only) on the same periodic rough
-   surface, with the same load, timed side by side.
-3. ``contact_rough_mdr_vs_bem.csv`` -- MDR ensemble stiffness against the BEM
-   (non-periodic rough punch and periodic cell) over three decades of
-   pressure, with the wall time of each.
+   (optional; pip-installed for the benchmark only) on the reference surfaces
+   at 512^2, same load: wall time of one solve, and the stiffness (ours: the
+   tangent solve; tamaas: finite difference of the mean gap).
+3. ``contact_rough_speed_vs_error.csv`` (+ ``_summary.csv``, ``.png``) -- on
+   the resolved rough references of ``tests/data/contact_references.json``
+   (surfaces rebuilt from their recipes): the MDR ensemble by line length and
+   number of realisations and the periodic BEM by grid, side by side, error of
+   the stiffness against the finest periodic reference, wall time per pressure.
 
 A log-log plot of time against error goes next to the CSVs.
 
@@ -68,80 +71,161 @@ def axisymmetric_table(quick: bool) -> list[dict]:
     return rows
 
 
-def tamaas_table(quick: bool) -> list[dict]:
-    from tribolmp.models.contact.bem import solve_bem
-    from tribolmp.models.contact.rough import generate_surface, self_affine_psd
+def _references():
+    """The shipped resolved rough-contact references (tests/data/contact_references.json) and their helpers."""
+    import json
 
-    n = 128 if quick else 512
-    L, E = 1.0, 1.0
-    dx = L / n
-    rng = np.random.default_rng(7)
-    h = generate_surface(n, dx, self_affine_psd(1e-2, 0.8, L / 4, L / 64), rng)
-    P = 0.005  # ~1.5 % contact area
-    rows = []
+    root = Path(__file__).resolve().parents[1]
+    sys.path.insert(0, str(root))
+    from tests.data import contact_references as cr
+
+    return cr, json.loads((root / "tests" / "data" / "contact_references.json").read_text())
+
+
+def _reference_k(cr, cls):
+    """Best periodic stiffness (finest grid of the resolution study, map 0) and the resolved mask."""
+    res = cls["resolution"]
+    nf = max(int(n) for n in res)
+    return np.array(res[str(nf)]["periodic"]["stiffness"]), cr.resolved_mask(cls), nf
+
+
+def _tamaas_solve(tm, h, dx, E, P, tol):
+    """tamaas PolonskyKeerRey at mean pressure P: (time s, pressure field, mean gap m)."""
+    n = h.shape[0]
+    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [n * dx, n * dx], [n, n])
+    model.E, model.nu = E, 0.0
+    solver = tm.PolonskyKeerRey(model, h.copy(), tol)
+    solver.setMaxIterations(100000)
+    t0 = time.perf_counter()
+    solver.solve(P)
+    t = time.perf_counter() - t0
+    p = np.array(model.traction).reshape(h.shape)
+    u = np.array(model.displacement).reshape(h.shape)
+    c = float(np.mean((h - u)[p > 0]))
+    return t, p, float(np.mean(u - h)) + c
+
+
+def tamaas_table(quick: bool) -> list[dict]:
+    """Our periodic BEM against tamaas on the reference surfaces: stiffness and wall time.
+
+    Both solvers run alternately (best of ``repeats`` each, the machine is shared), at the
+    same surface and load.  Stiffness: ours from the tangent solve (what ``solve_bem``
+    returns), tamaas's by the finite difference of its mean gap between p and p (1 + 1e-3);
+    "time for stiffness" is ours (one solve incl. the tangent solve) against tamaas's two solves.
+    """
+    from tribolmp.models.contact.bem import solve_bem
+
     try:
         import tamaas as tm  # benchmark-only optional dependency
     except Exception as exc:  # noqa: BLE001
-        print(f"tamaas not available ({exc}); skipping the tamaas column", file=sys.stderr)
-        tm = None
-    for rep in range(2):
-        t0 = time.perf_counter()
-        ours = solve_bem(h, dx, E, P, periodic=True, stiffness=False, tol=1e-10)
-        t_ours = time.perf_counter() - t0
-        row = dict(grid=n, repeat=rep, ours_time_s=t_ours, ours_nit=ours.nit, ours_area_fraction=ours.area_fraction)
-        if tm is not None:
-            model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [L, L], [n, n])
-            model.E, model.nu = E, 0.0
-            solver = tm.PolonskyKeerRey(model, h.copy(), 1e-12)
-            t0 = time.perf_counter()
-            solver.solve(P)
-            t_tm = time.perf_counter() - t0
-            p_tm = np.array(model.traction).reshape(h.shape)
-            row.update(
-                tamaas_time_s=t_tm,
-                tamaas_area_fraction=float(np.mean(p_tm > 0)),
-                ratio=t_ours / t_tm,
+        print(f"tamaas not available ({exc}); skipping the tamaas table", file=sys.stderr)
+        return []
+    tm.set_log_level(tm.LogLevel.error)
+    cr, refs = _references()
+    n = 256 if quick else 512
+    names = [k for k in ("H0.8-rolloff", "H0.5-selfaffine", "wavy+H0.8") if k in refs["classes"]][: 1 if quick else 3]
+    repeats = 1 if quick else 2
+    rows = []
+    eps = 1e-3  # finite-difference step in pressure for tamaas's stiffness (O(eps) ~ 1e-3 relative error)
+    for name in names:
+        cls = refs["classes"][name]
+        h, dx = cr.reference_surface(cls["recipe"], cls["recipe"]["seeds"][0], n)
+        P = np.array(cls["pressures"])
+        ok = cr.resolved_mask(cls)
+        for j in [j for j in (0, 3) if ok[j]]:
+            p = float(P[j])
+            L2 = (n * dx) ** 2
+            t_tm, t_tm2, t_ours = [], [], []
+            for _ in range(repeats):
+                t1, p_tm, g1 = _tamaas_solve(tm, h, dx, cr.E_STAR, p, 1e-12)
+                t2, _, g2 = _tamaas_solve(tm, h, dx, cr.E_STAR, p * (1 + eps), 1e-12)
+                t0 = time.perf_counter()
+                ours = solve_bem(h, dx, cr.E_STAR, p, periodic=True, tol=1e-10)
+                t_ours.append(time.perf_counter() - t0)
+                t_tm.append(t1)
+                t_tm2.append(t1 + t2)
+            k_tm = eps * p * L2 / (g1 - g2)
+            ours2 = solve_bem(h, dx, cr.E_STAR, p * (1 + eps), periodic=True, tol=1e-10, stiffness=False, p0=ours.p)
+            k_ours_fd = eps * p * L2 / (ours.mean_gap - ours2.mean_gap)
+            rows.append(dict(
+                surface=name, grid=n, reduced_pressure=cls["reduced_pressures"][j], area_fraction=ours.area_fraction,
+                ours_time_s=min(t_ours), ours_nit=ours.nit, ours_nit_stiffness=ours.nit_stiffness, tamaas_time_s=min(t_tm),
+                tamaas_time_for_stiffness_s=min(t_tm2), time_ratio_solve_incl_tangent=min(t_ours) / min(t_tm),
+                time_ratio_for_stiffness=min(t_ours) / min(t_tm2),
+                ours_stiffness=ours.stiffness, ours_fd_stiffness=k_ours_fd, tamaas_fd_stiffness=k_tm,
+                stiffness_rel_diff=ours.stiffness / k_tm - 1, fd_stiffness_rel_diff=k_ours_fd / k_tm - 1,
                 max_pressure_diff=float(np.max(np.abs(ours.p - p_tm)) / np.max(p_tm)),
-            )
-        rows.append(row)
+            ))
+            print(f"  tamaas {name} p/(E*h')={cls['reduced_pressures'][j]:g}: ours {min(t_ours):.2f} s vs tamaas {min(t_tm):.2f} s "
+                  f"(x2 for its stiffness), k diff {rows[-1]['stiffness_rel_diff']:+.2e}", flush=True)
     return rows
 
 
 def rough_table(quick: bool) -> list[dict]:
-    from tribolmp.models.contact import solve_rough
-    from tribolmp.models.contact.rough import generate_surface, self_affine_psd
+    """MDR (line length x realisations) and periodic BEM (grid) against the resolved references, one run."""
+    from tribolmp.models.contact.bem import solve_bem
+    from tribolmp.models.contact.rough import mdr_profiles_from_heightmap, stiffness_vs_load
 
-    n = 64 if quick else 256
-    dx = 2e-6
-    E = 1.13e11
-    rng = np.random.default_rng(20060327)
-    s_rng, e_rng = rng.spawn(2)
-    h = generate_surface(n, dx, self_affine_psd(1e-6, 0.8, n * dx / 4, 8e-6 if not quick else 8e-6), s_rng)
-    pressures = [1e5, 1e6, 1e7, 1e8] if not quick else [1e6, 1e7, 1e8]
-    t_mdr, mdr = _best_time(lambda: solve_rough(h, dx, E, pressures, method="mdr", realizations=16, rng=np.random.default_rng(1)), 7)
+    cr, refs = _references()
+    names = list(refs["classes"])[:2] if quick else list(refs["classes"])
+    grids = (128, 256) if quick else (128, 256, 512)  # > 2 K_S + 1 = 65 points: the band-limited surface unaliased
+    reals = (4, 16, 64) if quick else (4, 16, 64, 256)
     rows = []
-    bems = {per: solve_rough(h, dx, E, pressures, method="bem", periodic=per) for per in (False, True)}
-    for j, p in enumerate(pressures):
-        bn, bp = bems[False].rows[j], bems[True].rows[j]
-        rows.append(
-            dict(
-                grid=n,
-                pressure=p,
-                mdr_stiffness=mdr.stiffness[j],
-                mdr_q10=mdr.stiffness_q10[j],
-                mdr_q90=mdr.stiffness_q90[j],
-                mdr_time_s=t_mdr / len(pressures),
-                bem_punch_stiffness=bn["stiffness"],
-                bem_punch_area_fraction=bn["area_fraction"],
-                bem_punch_time_s=bn["time_s"],
-                ratio_mdr_punch=mdr.stiffness[j] / bn["stiffness"],
-                bem_periodic_stiffness=bp["stiffness"],
-                bem_periodic_time_s=bp["time_s"],
-                ratio_mdr_periodic=mdr.stiffness[j] / bp["stiffness"],
-                speedup_vs_punch=bn["time_s"] / (t_mdr / len(pressures)),
-            )
-        )
+    for name in names:
+        cls = refs["classes"][name]
+        k_ref, ok, nf = _reference_k(cr, cls)
+        P = np.array(cls["pressures"])[ok]
+        pb = np.array(cls["reduced_pressures"])[ok]
+        kr = k_ref[ok]
+        seed = cls["recipe"]["seeds"][0]
+        for n in (128, 256, 512):
+            h, dx = cr.reference_surface(cls["recipe"], seed, n)
+            for R in reals:
+                def run():
+                    x, g = mdr_profiles_from_heightmap(h, dx, R, np.random.default_rng(seed + R))
+                    return stiffness_vs_load(x, g, cr.E_STAR, P, nominal_area=(n * dx) ** 2)
+                t, res = _best_time(run, 3)
+                err = np.abs(res.stiffness / kr - 1)
+                for j in range(P.size):
+                    rows.append(dict(surface=name, method="mdr", mesh=n, realizations=R, reduced_pressure=pb[j],
+                                     rel_error=err[j], closed_fraction=res.closed_fraction[j], time_s=t / P.size,
+                                     reference_grid=nf))
+        for n in grids:
+            h, dx = cr.reference_surface(cls["recipe"], seed, n)
+            p0 = None
+            for j, p in enumerate(P):
+                t0 = time.perf_counter()
+                r = solve_bem(h, dx, cr.E_STAR, float(p), periodic=True, tol=1e-10, p0=p0)
+                t = time.perf_counter() - t0
+                p0 = r.p
+                rows.append(dict(surface=name, method="bem", mesh=n, realizations=0, reduced_pressure=pb[j],
+                                 rel_error=abs(r.stiffness / kr[j] - 1), closed_fraction=float("nan"), time_s=t,
+                                 reference_grid=nf))
+        print(f"  rough {name}: done", flush=True)
     return rows
+
+
+def _plot_rough(rows: list[dict], path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6.5, 4.8))
+    keys = sorted({(r["method"], r["mesh"], r["realizations"]) for r in rows})
+    for method, mesh, R in keys:
+        sel = [r for r in rows if (r["method"], r["mesh"], r["realizations"]) == (method, mesh, R)]
+        t = np.median([r["time_s"] for r in sel])
+        e = np.max([r["rel_error"] for r in sel])
+        ax.loglog(t, max(e, 1e-6), "o" if method == "mdr" else "s", color="C0" if method == "mdr" else "C3")
+        ax.annotate(f"{mesh}" + (f"x{R}" if method == "mdr" else "²"), (t, max(e, 1e-6)), fontsize=7)
+    ax.set_xlabel("wall time per pressure (s)")
+    ax.set_ylabel("worst relative stiffness error vs periodic 3D reference")
+    ax.set_title("rough contact: MDR (blue, line x realisations) vs BEM (red, grid)", fontsize=9)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
 
 
 def _plot(rows: list[dict], path: Path) -> None:
@@ -163,6 +247,19 @@ def _plot(rows: list[dict], path: Path) -> None:
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+def _rough_summary(rows: list[dict]) -> list[dict]:
+    out = []
+    for key in sorted({(r["method"], r["mesh"], r["realizations"]) for r in rows}):
+        sel = [r for r in rows if (r["method"], r["mesh"], r["realizations"]) == key]
+        closed = [r["closed_fraction"] for r in sel if r["method"] == "mdr"]
+        out.append(dict(method=key[0], mesh=key[1], realizations=key[2], cases=len(sel),
+                        median_rel_error=float(np.median([r["rel_error"] for r in sel])),
+                        max_rel_error=float(np.max([r["rel_error"] for r in sel])),
+                        max_closed_fraction=float(np.max(closed)) if closed else float("nan"),
+                        median_time_s=float(np.median([r["time_s"] for r in sel]))))
+    return out
 
 
 def main(argv=None) -> int:
@@ -187,8 +284,11 @@ def main(argv=None) -> int:
         write_csv(out / f"contact_bem_vs_tamaas{suffix}.csv", rows)
     if "rough" not in skip:
         rows = rough_table(args.quick)
-        print_table("Rough surface: MDR ensemble (16) against BEM stiffness", rows)
-        write_csv(out / f"contact_rough_mdr_vs_bem{suffix}.csv", rows)
+        summary = _rough_summary(rows)
+        print_table("Rough surfaces (resolved references): worst error and time per (method, mesh, realisations)", summary)
+        write_csv(out / f"contact_rough_speed_vs_error{suffix}.csv", rows)
+        write_csv(out / f"contact_rough_speed_vs_error_summary{suffix}.csv", summary)
+        _plot_rough(rows, out / f"contact_rough_speed_vs_error{suffix}.png")
     return 0
 
 

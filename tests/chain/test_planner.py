@@ -124,7 +124,10 @@ def test_auto_uses_the_shipped_table():
     assert table.get("provenance"), "the shipped table must state where its numbers come from"
     scene = load_scene(scene_path("default"))
     opts = plan_scene(scene)["contact"].options
-    best = choose_contact_method(scene.contact.tolerance, table)
+    from tribolmp.models.contact.choice import reduced_pressures_of_scene
+
+    # the plan judges the table at the scene's own reduced pressures p/(E* h'rms)
+    best = choose_contact_method(scene.contact.tolerance, table, reduced_pressures=reduced_pressures_of_scene(scene))
     assert (opts["method"], opts["mesh"]) == (best["method"], best["mesh"])
 
 

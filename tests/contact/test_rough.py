@@ -174,9 +174,36 @@ def test_scene_adapter_runs_mdr_and_bem():
     # same seed -> same surface -> reproducible
     strip = lambda rows: [{k: v for k, v in r.items() if k != "time_s"} for r in rows]  # noqa: E731
     assert strip(stiffness_vs_pressure(params, method="mdr").rows) == strip(mdr.rows)
-    # the two methods agree within the documented +-30 % band at these loads (ratio measured 0.9-1.3)
-    for rm, rb in zip(mdr.rows, bem.rows):
-        assert 0.5 < rm["stiffness"] / rb["stiffness"] < 2.0
+    # This default surface is not resolved (short cut-off 4 um = 2 pixels), so no agreement between
+    # the methods is claimed here: that comparison is made on resolved references in
+    # test_rough_references.py.  What holds at any resolution: a line's stiffness is at most the
+    # punch limit E* L, and both stiffnesses grow with the load.
+    L = 64 * 2e-6
+    assert all(0 < r["stiffness"] <= 1e11 * L * (1 + 1e-12) for r in mdr.rows)
+    assert mdr.rows[1]["stiffness"] > mdr.rows[0]["stiffness"] and bem.rows[1]["stiffness"] > bem.rows[0]["stiffness"]
+
+
+def test_rms_gradient_and_pressure_scale_out(rng):
+    # Frictionless linear-elastic contact depends on heights and pressure only through p/(E* h'rms):
+    # scaling the heights and the pressure by s scales u, the gap and the force by s and leaves the
+    # contact set and dF/dd unchanged.  This is why the references are tabulated by p/(E* h'rms).
+    from tribolmp.models.contact.bem import solve_bem
+    from tribolmp.models.contact.rough import fourier_coefficients, rms_gradient, surface_from_coefficients
+
+    B = fourier_coefficients(self_affine_psd(1e-6, 0.8, 2.5e-5, 1e-4 / 12), 1e-4, 12, rng)
+    h = surface_from_coefficients(B, 64)
+    dx = 1e-4 / 64
+    # band-limited: the rms gradient is the same on any grid above the Nyquist rate (round-off)
+    assert rms_gradient(surface_from_coefficients(B, 128), dx / 2) == pytest.approx(rms_gradient(h, dx), rel=1e-10)
+    a = solve_bem(h, dx, 1e11, 1e8, periodic=True, tol=1e-12)
+    b = solve_bem(3 * h, dx, 1e11, 3e8, periodic=True, tol=1e-12)
+    assert np.array_equal(a.p > 0, b.p > 0)
+    assert b.stiffness == pytest.approx(a.stiffness, rel=1e-6)  # CG tolerances 1e-12 / 1e-8
+    assert b.mean_gap == pytest.approx(3 * a.mean_gap, rel=1e-6)
+    x, g = mdr_profiles_from_heightmap(h, dx, 8, np.random.default_rng(1))
+    ka = stiffness_vs_load(x, g, 1e11, [1e8]).stiffness
+    kb = stiffness_vs_load(x, 3 * g, 1e11, [3e8]).stiffness
+    assert kb == pytest.approx(ka, rel=1e-9)
 
 
 def test_profiles_from_a_line_scan(rng):

@@ -1,25 +1,40 @@
-"""Slow: MDR ensemble stiffness against the 3D BEM over three decades of pressure."""
+"""Slow: the shipped 512^2 rough-contact references are what today's BEM computes, and MDR sits where the table says."""
 
 from __future__ import annotations
+
+import json
 
 import numpy as np
 import pytest
 
-from tribolmp.models.contact import solve_rough
-from tribolmp.models.contact.rough import generate_surface, self_affine_psd
+from tests.data import DATA_DIR
+from tests.data import contact_references as cr
+from tribolmp.models.contact.bem import solve_bem
+from tribolmp.models.contact.interfacial import interfacial_stiffness
 
 
 @pytest.mark.slow
-def test_mdr_stiffness_within_30_percent_of_punch_bem():
-    n, dx, E = 128, 2e-6, 1.13e11
-    s_rng, e_rng = np.random.default_rng(20060327).spawn(2)
-    h = generate_surface(n, dx, self_affine_psd(1e-6, 0.8, n * dx / 4, 8e-6), s_rng)
-    pressures = [1e5, 1e6, 1e7, 1e8]
-    mdr = solve_rough(h, dx, E, pressures, method="mdr", realizations=16, rng=e_rng)
-    bem = solve_rough(h, dx, E, pressures, method="bem", periodic=False)
-    ratio = mdr.stiffness / bem.stiffness
-    # The issue's goal: +-30 % of the 3D BEM over three decades (1e5 - 1e8 Pa) for the
-    # finite rough punch, which is what a finite MDR line represents.  Against the
-    # periodic interfacial stiffness the MDR falls below by 2x at high load (sublinear vs
-    # linear stiffness, PHYSICS.md §2) -- that comparison is reported, not asserted.
-    assert np.all(np.abs(ratio - 1) <= 0.3), ratio
+@pytest.mark.parametrize("name", ["H0.8-rolloff", "wavy+H0.8"])
+def test_references_reproduce_at_full_resolution(name):
+    # Recompute map 0 of two classes on the 512^2 reference grid at two resolved pressures
+    # (periodic cell via the C5 function interfacial_stiffness, and the rigid square punch):
+    # the stiffness must equal the shipped value to 1e-6 (BEM tolerance 1e-10, tangent CG 1e-8),
+    # and the MDR/punch and MDR/periodic ratios of that map then follow from the shipped MDR row.
+    refs = json.loads((DATA_DIR / "contact_references.json").read_text())
+    cls = refs["classes"][name]
+    ok = np.nonzero(cr.resolved_mask(cls))[0]
+    js = [ok[0], ok[len(ok) // 2]]
+    m = cls["maps"][0]
+    h, dx = cr.reference_surface(cls["recipe"], m["seed"], cr.N_BASE)
+    P = [cls["pressures"][j] for j in js]
+    per = interfacial_stiffness(h, dx, cr.E_STAR, P, tol=cr.BEM_TOL)
+    assert np.all(per.resolved)  # >= 20 pixels per patch at these pressures
+    for i, j in enumerate(js):
+        assert per.stiffness[i] == pytest.approx(m["periodic"]["stiffness"][j], rel=1e-6)
+        assert per.stiffness_per_area[i] == pytest.approx(m["periodic"]["stiffness"][j] / cr.SIDE**2, rel=1e-6)
+        assert per.mean_gap[i] == pytest.approx(m["periodic"]["mean_gap"][j], rel=1e-6)
+    punch = solve_bem(h, dx, cr.E_STAR, P[0], periodic=False, tol=cr.BEM_TOL)
+    assert punch.stiffness == pytest.approx(m["punch"]["stiffness"][js[0]], rel=1e-6)
+    # Physical bound: a partial contact is softer than the closed square punch of side L, whose
+    # stiffness is 2 E* sqrt(A/pi) within 4 % (checked in test_bem.py) -> 5 % margin.
+    assert punch.stiffness < 2 * cr.E_STAR * cr.SIDE / np.sqrt(np.pi) * 1.05

@@ -1,27 +1,80 @@
 """Regenerate the committed test data: ``python tests/data/generate_reference_data.py [NAME ...]``.
 
-Writes each dataset of :data:`tests.data.RECIPES` into ``tests/data/<name>/``
-from :mod:`tribolmp.analysis.synthetic` with its fixed seed.  Run it after a
-deliberate change of a generator, and commit the result.
+Names:
+
+* each dataset of :data:`tests.data.RECIPES` (written into ``tests/data/<name>/``
+  from :mod:`tribolmp.analysis.synthetic` with its fixed seed);
+* ``contact`` -- the resolved rough-contact references of
+  :mod:`tests.data.contact_references` (all classes; ``contact:CLASS`` for one,
+  merged into the existing file) -> ``tests/data/contact_references.json``,
+  then the summary ``contact-summary`` (no new solves): the MDR ratio table
+  (``tests/data/contact_ratio_table.md``) and the planner's speed-error table
+  ``tribolmp/data/contact_speed_error.json``.  Run it with ``nice -n 10``: about
+  2-4 minutes of CPU per class on a shared 2-core machine.
+
+Default: all.  Run it after a deliberate change of a generator or a solver, and commit the result.
 """
 
 from __future__ import annotations
 
+import json
 import sys
+import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
 from tests.data import DATA_DIR, RECIPES, generate  # noqa: E402
 
+CONTACT_JSON = DATA_DIR / "contact_references.json"
+
+
+def _contact(classes: list[str]) -> None:
+    from tests.data import contact_references as cr
+
+    refs = json.loads(CONTACT_JSON.read_text()) if CONTACT_JSON.exists() else {}
+    refs.setdefault("classes", {})
+    refs["setup"] = dict(side_m=cr.SIDE, E_star_Pa=cr.E_STAR, k_s=cr.K_S, n_base=cr.N_BASE, n_study=list(cr.N_STUDY),
+                         n_mdr=list(cr.N_MDR), mdr_realizations=cr.MDR_REALIZATIONS, bem_tol=cr.BEM_TOL,
+                         reduced_pressures=list(cr.REDUCED_PRESSURES),
+                         note="stiffness N/m of the L x L cell (periodic) or L x L rigid punch; mean_gap m; time_s per pressure")
+    for name in classes:
+        t0 = time.perf_counter()
+        print(f"contact class {name} ...", flush=True)
+        refs["classes"][name] = cr.run_class(name, log=lambda s: print(s, flush=True))
+        refs["created_utc"] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+        CONTACT_JSON.write_text(json.dumps(refs, indent=None, separators=(",", ":")) + "\n")  # saved after every class
+        print(f"contact class {name}: {time.perf_counter() - t0:.0f} s wall", flush=True)
+
+
+def _contact_summary() -> None:
+    from tests.data import contact_references as cr
+
+    refs = json.loads(CONTACT_JSON.read_text())
+    md, table = cr.summarise(refs)
+    (DATA_DIR / "contact_ratio_table.md").write_text(md)
+    out = Path(__file__).resolve().parents[2] / "tribolmp" / "data" / "contact_speed_error.json"
+    out.write_text(json.dumps(table, indent=2) + "\n")
+    print(md)
+
 
 def main(argv=None) -> int:
     """Regenerate the named datasets (default: all)."""
-    names = list(argv if argv is not None else sys.argv[1:]) or sorted(RECIPES)
+    from tests.data import contact_references as cr
+
+    names = list(argv if argv is not None else sys.argv[1:]) or sorted(RECIPES) + ["contact"]
     for name in names:
-        answers = generate(name, DATA_DIR / name)
-        size = sum(p.stat().st_size for p in (DATA_DIR / name).iterdir())
-        print(f"{name}: {size / 1024:.0f} KiB, expected {sorted(answers)}")
+        if name == "contact":
+            _contact(list(cr.CLASSES))
+            _contact_summary()
+        elif name.startswith("contact:"):
+            _contact([name.split(":", 1)[1]])
+        elif name == "contact-summary":
+            _contact_summary()
+        else:
+            answers = generate(name, DATA_DIR / name)
+            size = sum(p.stat().st_size for p in (DATA_DIR / name).iterdir())
+            print(f"{name}: {size / 1024:.0f} KiB, expected {sorted(answers)}")
     return 0
 
 
