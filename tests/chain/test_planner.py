@@ -126,7 +126,7 @@ def test_auto_uses_the_shipped_table():
     opts = plan_scene(scene)["contact"].options
     from tribolmp.models.contact.choice import reduced_pressures_of_scene
 
-    # the plan judges the table at the scene's own reduced pressures p/(E* h'rms)
+    # the plan judges the rough-surface table at the scene's own reduced pressures p/(E* h'rms)
     best = choose_contact_method(scene.contact.tolerance, table, reduced_pressures=reduced_pressures_of_scene(scene))
     assert (opts["method"], opts["mesh"]) == (best["method"], best["mesh"])
 

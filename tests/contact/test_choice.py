@@ -43,3 +43,17 @@ def test_mdr_never_picked_with_closed_lines():
 def test_outside_the_measured_range_uses_the_nearest_and_says_so():
     c = choose_method(0.3, TABLE, reduced_pressures=[1e-4])
     assert (c["method"], c["mesh"]) == ("mdr", 256) and "outside the measured pressure range" in c["why"]
+
+
+def test_axisymmetric_scene_uses_the_exact_mdr():
+    import dataclasses
+
+    from tribolmp.models.contact.choice import choose_method_for_scene
+    from tribolmp.scene import load_scene, scene_path
+
+    scene = load_scene(scene_path("default"))
+    sphere = dataclasses.replace(scene, geometry=dataclasses.replace(scene.geometry, profile="sphere"))
+    assert choose_method_for_scene(sphere, TABLE)["method"] == "mdr"
+    # the rough default scene is judged at its reduced pressures (1e-5 ... 1e-2): MDR's 0.4 row is in range
+    c = choose_method_for_scene(scene, TABLE)
+    assert c["method"] == "bem" and c["reduced_pressure_range"][1] == pytest.approx(0.0114, rel=0.01)

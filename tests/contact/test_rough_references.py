@@ -39,8 +39,10 @@ def test_references_are_resolved_and_converged():
         e = cr.resolution_errors(cls)
         assert ok.sum() >= 4, (name, ok)
         assert np.all(e["ppp"][ok] >= 20) and np.all(e["moved"][ok] <= 0.02)
-        # discretisation error falls with the grid (128 -> 256 -> 512) at every resolved pressure
-        assert np.all(e["periodic"][128][ok] >= e["periodic"][512][ok])
+        # the base grid's error estimate (difference to 1024^2 + its Richardson error) stays within 2 %;
+        # single differences are not monotonic in the grid (the contact set changes pixel by pixel),
+        # which is why the speed-error table takes the envelope over finer grids
+        assert np.all(e["periodic"][e["n_base"]][ok] <= 0.02)
 
 
 @pytest.mark.parametrize("name", CLASSES)
@@ -48,14 +50,15 @@ def test_bem_on_another_map_within_the_measured_resolution_error(name):
     # Map 1 of the class (not the map of the resolution study) at 128^2 against its shipped 512^2
     # periodic reference: the error must stay within the resolution error the study measured at
     # 128^2 (worst over the classes, the speed-error table's bem/128 row) -- the study's error
-    # estimate transfers to other maps of the same class.  ~0.4 s per class.
+    # estimate transfers to other maps of the same class.  ~0.3 s per class on a quiet core.
     cls = REFS["classes"][name]
     ok = cr.resolved_mask(cls)
     m = cls["maps"][1]
     h, dx = cr.reference_surface(cls["recipe"], m["seed"], 128)
     P = np.array(cls["pressures"])
     p0 = None
-    for j in np.nonzero(ok)[0]:
+    idx = np.nonzero(ok)[0]
+    for j in sorted({idx[0], idx[len(idx) // 2], idx[-1]}):  # lowest, middle and highest resolved pressure
         r = solve_bem(h, dx, cr.E_STAR, float(P[j]), periodic=True, tol=cr.BEM_TOL, p0=p0)
         p0 = r.p
         tol = _table_error("bem", 128, cls["reduced_pressures"][j])

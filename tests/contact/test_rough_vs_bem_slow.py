@@ -13,10 +13,13 @@ from tribolmp.models.contact.bem import solve_bem
 from tribolmp.models.contact.interfacial import interfacial_stiffness
 
 
+_NAMES = sorted(json.loads((DATA_DIR / "contact_references.json").read_text())["classes"])
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ["H0.8-rolloff", "wavy+H0.8"])
+@pytest.mark.parametrize("name", [_NAMES[0], _NAMES[-1]])
 def test_references_reproduce_at_full_resolution(name):
-    # Recompute map 0 of two classes on the 512^2 reference grid at two resolved pressures
+    # Recompute map 0 of two classes (first and last by name) on its reference grid (512^2, or 256^2 for light-mode classes) at two resolved pressures
     # (periodic cell via the C5 function interfacial_stiffness, and the rigid square punch):
     # the stiffness must equal the shipped value to 1e-6 (BEM tolerance 1e-10, tangent CG 1e-8),
     # and the MDR/punch and MDR/periodic ratios of that map then follow from the shipped MDR row.
@@ -25,7 +28,7 @@ def test_references_reproduce_at_full_resolution(name):
     ok = np.nonzero(cr.resolved_mask(cls))[0]
     js = [ok[0], ok[len(ok) // 2]]
     m = cls["maps"][0]
-    h, dx = cr.reference_surface(cls["recipe"], m["seed"], cr.N_BASE)
+    h, dx = cr.reference_surface(cls["recipe"], m["seed"], cr.n_base(cls))
     P = [cls["pressures"][j] for j in js]
     per = interfacial_stiffness(h, dx, cr.E_STAR, P, tol=cr.BEM_TOL)
     assert np.all(per.resolved)  # >= 20 pixels per patch at these pressures

@@ -6,7 +6,9 @@ Names:
   from :mod:`tribolmp.analysis.synthetic` with its fixed seed);
 * ``contact`` -- the resolved rough-contact references of
   :mod:`tests.data.contact_references` (all classes; ``contact:CLASS`` for one,
-  merged into the existing file) -> ``tests/data/contact_references.json``,
+  merged into the existing file) -> ``tests/data/contact_references.json``
+  (``contact-coarse`` adds missing coarse-grid runs of maps 1+ to an existing file;
+  ``contact-light:CLASS`` runs a class with 256^2 maps, for a crowded machine),
   then the summary ``contact-summary`` (no new solves): the MDR ratio table
   (``tests/data/contact_ratio_table.md``) and the planner's speed-error table
   ``tribolmp/data/contact_speed_error.json``.  Run it with ``nice -n 10``: about
@@ -26,10 +28,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
 from tests.data import DATA_DIR, RECIPES, generate  # noqa: E402
 
-CONTACT_JSON = DATA_DIR / "contact_references.json"
+import os  # noqa: E402
+
+# TRIBOLMP_CONTACT_JSON: write the contact classes elsewhere (parallel runs, merged by "contact-merge:A,B")
+CONTACT_JSON = Path(os.environ.get("TRIBOLMP_CONTACT_JSON", DATA_DIR / "contact_references.json"))
 
 
-def _contact(classes: list[str]) -> None:
+def _contact(classes: list[str], base: int | None = None) -> None:
     from tests.data import contact_references as cr
 
     refs = json.loads(CONTACT_JSON.read_text()) if CONTACT_JSON.exists() else {}
@@ -41,10 +46,21 @@ def _contact(classes: list[str]) -> None:
     for name in classes:
         t0 = time.perf_counter()
         print(f"contact class {name} ...", flush=True)
-        refs["classes"][name] = cr.run_class(name, log=lambda s: print(s, flush=True))
+        refs["classes"][name] = cr.run_class(name, log=lambda s: print(s, flush=True), base=base or cr.N_BASE)
         refs["created_utc"] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
         CONTACT_JSON.write_text(json.dumps(refs, indent=None, separators=(",", ":")) + "\n")  # saved after every class
         print(f"contact class {name}: {time.perf_counter() - t0:.0f} s wall", flush=True)
+
+
+def _contact_coarse() -> None:
+    """Add the coarse-grid periodic runs of maps 1, 2 to classes generated without them (no other solves)."""
+    from tests.data import contact_references as cr
+
+    refs = json.loads(CONTACT_JSON.read_text())
+    for name, cls in refs["classes"].items():
+        cr.extend_coarse(cls)
+        print(f"contact class {name}: coarse grids of maps 1+ done", flush=True)
+    CONTACT_JSON.write_text(json.dumps(refs, indent=None, separators=(",", ":")) + "\n")
 
 
 def _contact_summary() -> None:
@@ -66,9 +82,19 @@ def main(argv=None) -> int:
     for name in names:
         if name == "contact":
             _contact(list(cr.CLASSES))
+            _contact_coarse()
             _contact_summary()
+        elif name.startswith("contact-light:"):
+            _contact([name.split(":", 1)[1]], base=256)
         elif name.startswith("contact:"):
             _contact([name.split(":", 1)[1]])
+        elif name.startswith("contact-merge:"):
+            refs = json.loads(CONTACT_JSON.read_text())
+            for part in name.split(":", 1)[1].split(","):
+                refs["classes"].update(json.loads(Path(part).read_text())["classes"])
+            CONTACT_JSON.write_text(json.dumps(refs, indent=None, separators=(",", ":")) + "\n")
+        elif name == "contact-coarse":
+            _contact_coarse()
         elif name == "contact-summary":
             _contact_summary()
         else:

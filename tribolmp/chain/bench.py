@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import csv
 import io
+import json
 import subprocess
 import sys
 import time
@@ -61,7 +62,7 @@ def _owners(scripts: list[Path], results_dir: Path | None) -> dict[str, list[Pat
     """CSV files of each benchmark: named after its stem, else after its model (the stem's first word).
 
     ``contact_speed_vs_error.py`` owns ``contact_speed_vs_error*.csv`` and also
-    ``contact_rough_mdr_vs_bem.csv`` (model ``contact``) when no other script's
+    ``contact_rough_speed_vs_error.csv`` (model ``contact``) when no other script's
     stem is a prefix of that file.
     """
     out: dict[str, list[Path]] = {s.stem: [] for s in scripts}
@@ -198,8 +199,25 @@ def build_contact_table(results_dir: str | Path) -> dict[str, Any]:
       surface has no exact solution), ``time_s`` = max BEM punch wall time per pressure.
 
     The full-size CSVs are preferred over ``_quick`` ones for the same grid.
+
+    When the repository's resolved rough-contact references
+    (``tests/data/contact_references.json``, issue 17) are found next to the
+    benchmarks, the table is built from them instead, by the same summary that
+    ships ``tribolmp/data/contact_speed_error.json``
+    (``tests/data/generate_reference_data.py contact-summary``).
     """
     rdir = Path(results_dir)
+    refs = rdir.resolve().parent.parent / "tests" / "data" / "contact_references.json"
+    if refs.exists():
+        import importlib.util
+
+        root = str(refs.parent.parent.parent)
+        if root not in sys.path:
+            sys.path.insert(0, root)
+        spec = importlib.util.spec_from_file_location("_contact_references", refs.parent / "contact_references.py")
+        mod = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(mod)
+        return mod.summarise(json.loads(refs.read_text()))[1]
     rough_rows: dict[int, list[dict[str, str]]] = {}
     hertz: dict[int, float] = {}
     sources = []

@@ -43,7 +43,7 @@ def run(args) -> int:
 
         table = build_contact_table(Path(res["benchmarks_dir"]) / "results")
         if not table["rows"]:
-            raise SetupError("--contact-table: expected contact_rough_mdr_vs_bem*.csv in benchmarks/results, got none")
+            raise SetupError("--contact-table: expected tests/data/contact_references.json or contact_rough_mdr_vs_bem*.csv in benchmarks/results, got none")
         atomic_write_json(args.contact_table, table)
         res["contact_table"] = args.contact_table
     if args.json:

@@ -80,11 +80,11 @@ class Contact(Stage):
                              "nothing", scene.source)
         c = scene.contact
         if c.method == "auto":
-            from ...models.contact.choice import reduced_pressures_of_scene
+            from ...models.contact.choice import choose_method_for_scene
 
+            # rough: the measured table at the scene's reduced pressures; axisymmetric: the exact MDR
             table = demand.overrides.get("contact_table")
-            choice = choose_contact_method(c.tolerance, speed_error_table() if table is None else table,
-                                           reduced_pressures=reduced_pressures_of_scene(scene))
+            choice = choose_method_for_scene(scene, speed_error_table() if table is None else table)
             method, mesh, why = choice["method"], choice["mesh"], "auto: " + choice["why"]
         else:
             choice = {}

@@ -23,7 +23,7 @@ from typing import Any
 
 from .rough import CLOSED_FRACTION_LIMIT
 
-__all__ = ["speed_error_table", "choose_method", "reduced_pressures", "reduced_pressures_of_scene"]
+__all__ = ["speed_error_table", "choose_method", "choose_method_for_scene", "reduced_pressures", "reduced_pressures_of_scene"]
 
 
 def speed_error_table() -> dict[str, Any] | None:
@@ -153,7 +153,26 @@ def choose_method(tolerance: float, table: dict[str, Any] | None = None, *, redu
                f"{best['mesh']} (measured error {best['rel_error']:.3g})")
     if best["extrapolated"]:
         why += " (outside the measured pressure range: nearest measured range used)"
+    elif asked is not None:
+        spans = [r["reduced_pressure_range"] for r in rows if r.get("reduced_pressure_range")]
+        if spans and (asked[0] < min(a for a, _ in spans) or asked[1] > max(b for _, b in spans)):
+            why += (f" (the measured range is p/(E* h'rms) {min(a for a, _ in spans):.3g}-{max(b for _, b in spans):.3g};"
+                    " pressures outside it use the nearest range)")
     if notes:
         why += "; " + "; ".join(sorted(set(notes)))
     return {"method": best["method"], "mesh": best["mesh"], "expected_error": best["rel_error"],
             "expected_time_s": best["time_s"], "reduced_pressure_range": asked, "why": why}
+
+
+def choose_method_for_scene(scene, table: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The ``auto`` choice for a scene: the measured rough-surface table, or MDR for an axisymmetric profile.
+
+    The table measures rough contacts only.  For a sphere, cone, flat punch or power-law profile
+    the MDR is exact (Popov & Hess; Hertz force error 4e-7 at 1999 springs, docs/contact.md), so
+    it is the choice at ``[contact].springs``.
+    """
+    tol = float(scene.contact.tolerance)
+    if getattr(scene.geometry, "profile", None) != "rough":
+        return {"method": "mdr", "mesh": None, "expected_error": None, "expected_time_s": None, "reduced_pressure_range": None,
+                "why": f"MDR is exact for the axisymmetric {scene.geometry.profile} profile (rough-surface table not applicable)"}
+    return choose_method(tol, table, reduced_pressures=reduced_pressures_of_scene(scene))
