@@ -456,7 +456,10 @@ def interfacial_stiffness_per_area(
     nominal ``pressures`` (Pa); refused outside their range (no extrapolation).
     """
     p = np.asarray(pressures, float)
-    k = np.asarray(stiffness, float) / float(patch_area_m2)
+    # A closed periodic cell (BEM area fraction 1) has k = inf, which the stage's JSON stores as
+    # null (read back as nan): the interface is then rigid, and the series with the punch is the punch.
+    k = np.asarray([np.inf if v is None else v for v in np.asarray(stiffness, dtype=object).ravel()], float)
+    k = np.where(np.isnan(k), np.inf, k) / float(patch_area_m2)
     if p.size == 1:
         if not math.isclose(p[0], pressure_Pa, rel_tol=1e-9):
             raise ParameterError("pressure", f"the solved pressure {p[0]:g} Pa", pressure_Pa)
@@ -467,6 +470,11 @@ def interfacial_stiffness_per_area(
             f"a nominal pressure within [{p.min():g}, {p.max():g}] Pa",
             f"{pressure_Pa:g} Pa",
         )
+    hit = np.isclose(p, pressure_Pa, rtol=1e-9, atol=0.0)
+    if hit.any():
+        # a solved pressure: its own value (a closed periodic cell above it has k = inf, which
+        # would turn the log-log interpolation into inf * 0 = nan at the node)
+        return float(k[np.argmax(hit)])
     o = np.argsort(p)
     return float(np.exp(np.interp(math.log(pressure_Pa), np.log(p[o]), np.log(k[o]))))
 
