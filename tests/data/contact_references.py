@@ -209,7 +209,10 @@ def resolution_errors(cls: dict) -> dict:
     npun = sorted(n for n in ns if "punch" in res[str(n)])
     kq = {n: np.array(res[str(n)]["punch"]["stiffness"]) for n in npun}
     nq = npun[-1]
-    q_fine = np.array([_richardson(kq[npun[-3]][j], kq[npun[-2]][j], kq[nq][j]) for j in range(kq[nq].size)])
+    if len(npun) >= 3:
+        q_fine = np.array([_richardson(kq[npun[-3]][j], kq[npun[-2]][j], kq[nq][j]) for j in range(kq[nq].size)])
+    else:  # two punch grids (light mode): the whole last change as the error (first order, conservative)
+        q_fine = np.abs(kq[nq] / kq[npun[-2]] - 1)
     pun = {n: np.abs(kq[n] / kq[nq] - 1) + q_fine for n in npun if n != nq}
     pun[nq] = q_fine
     return {"periodic": per, "punch": pun,
