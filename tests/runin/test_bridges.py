@@ -36,8 +36,12 @@ def test_c1_coefficients_pass_through_and_conditions_are_required():
     assert bridges.eq23_from_rates(nested).velocity_m_s == 5.0
     # Wrong inputs: no velocity (a rate cannot be moved without it), a partial C1 set, an invalid
     # field.
+    no_v = bridges.eq23_from_rates({k: v for k, v in C1.items() if k != "sliding_velocity_m_s"})
     with pytest.raises(ParameterError, match="sliding_velocity_m_s"):
-        bridges.eq23_from_rates({k: v for k, v in C1.items() if k != "sliding_velocity_m_s"})
+        bridges.rates_at_part(no_v, phi=0.1, velocity_m_s=0.01, slab_thickness_m=1e-9)
+    with pytest.raises(ParameterError, match="sliding_velocity_m_s"):  # transfer_rate needs it too
+        bridges.eq23_from_rates({"transfer_rate": 1.0, "wear_rate": 1.0, "diffusion_m2_s": 1e-12,
+                                 "step_length_m": 1e-9})
     with pytest.raises(ParameterError, match="missing"):
         bridges.eq23_from_rates({k: v for k, v in C1.items() if k != "dz"})
     with pytest.raises(ParameterError, match=r"missing \['dz'\]"):

@@ -79,7 +79,8 @@ def test_params_from_rates_mapping():
     [
         ({"step_time_s": 1e-9, "detachment_rate": 1.0, "sliding_velocity_m_s": 1.0}, "missing"),
         ({**RATES, "diffusion_m2_s": -1.0}, "rates.diffusion_m2_s"),
-        ({**RATES, "sliding_velocity_m_s": None}, "rates.sliding_velocity_m_s"),
+        ({**{k: v for k, v in RATES.items() if not k.endswith("tachment_rate")}, "sliding_velocity_m_s": None},
+         "rates.sliding_velocity_m_s"),
         ({"step_length_m": 1e-9, "diffusion_m2_s": 1e-12, "wear_rate": 1.0, "sliding_velocity_m_s": 1.0},
          r"missing \['dz'\]"),
         ({**RATES, "wear_rate": float("nan")}, "rates.wear_rate"),

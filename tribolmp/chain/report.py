@@ -204,7 +204,8 @@ def _narrative(data: dict[str, Any]) -> list[str]:
             f"({mac.get('contact_stiffness_source')}), bound "
             f"{_fmt(mac.get('contact_stiffness_bound_N_m'))} N/m; {mac.get('n_slip_events')} slip "
             f"events with mu_s = {_fmt(mac.get('mu_static'))}, "
-            f"mu_k = {_fmt(mac.get('mu_kinetic'))}."
+            f"mu_k = {_fmt(mac.get('mu_kinetic'))}; lowest velocity after the first slip "
+            f"{_fmt(mac.get('min_velocity_after_first_slip_m_s'))} m/s (above 0: no re-stick)."
         )
     tri = res.get("tribospectroscopy", {}).get("values", {})
     if tri:

@@ -129,8 +129,10 @@ def eq23_from_rates(rates: Any, *, fallback: Mapping[str, Any] | None = None) ->
        report states), with ``fallback["source"]`` naming them.
 
     The conditions (``pressure_Pa``, ``sliding_velocity_m_s`` or the
-    analysis' ``velocity_m_s``; top level or in ``conditions``) are required:
-    a rate without the velocity it was measured at cannot be moved to the part.
+    analysis' ``velocity_m_s``; top level or in ``conditions``) are recorded;
+    the velocity is needed to turn a ``transfer_rate`` into a frequency and,
+    in :func:`rates_at_part`, to move the rates to the part: a rate without
+    the velocity it was measured at cannot be moved (an error there).
 
     Parameters
     ----------
@@ -155,12 +157,6 @@ def eq23_from_rates(rates: Any, *, fallback: Mapping[str, Any] | None = None) ->
         )
     velocity = _condition(rates, "sliding_velocity_m_s", "velocity_m_s")
     pressure = _condition(rates, "pressure_Pa")
-    if velocity is None:
-        raise ParameterError(
-            "rates.sliding_velocity_m_s",
-            "the MCA's sliding velocity (m/s) the rates were measured at",
-            None,
-        )
     warnings: list[str] = []
     step = _num(rates, "step_length_m", allow_zero=False)
     valid = rates.get("valid") if isinstance(rates.get("valid"), Mapping) else {}
@@ -181,7 +177,7 @@ def eq23_from_rates(rates: Any, *, fallback: Mapping[str, Any] | None = None) ->
     transfer = _num(rates, "transfer_rate")
     if det is not None or rea is not None:
         nu_z, nu_src = (det or 0.0) + (rea or 0.0), "detachment_rate + reattachment_rate"
-    elif transfer is not None:
+    elif transfer is not None and velocity is not None:
         nu_z, nu_src = transfer * velocity, "transfer_rate * V_MCA"
     if step is not None:
         if "dx_l2" not in val and "d0" in val:
@@ -200,6 +196,12 @@ def eq23_from_rates(rates: Any, *, fallback: Mapping[str, Any] | None = None) ->
                     str(fallback.get("source", "fallback")),
                 )
     missing = [k for k, s in names.items() if s not in val]
+    if "dz" in missing and transfer is not None and velocity is None:
+        raise ParameterError(
+            "rates.sliding_velocity_m_s",
+            "the MCA's sliding velocity to turn transfer_rate into a frequency",
+            None,
+        )
     if missing:
         raise ParameterError(
             "rates",
@@ -277,7 +279,7 @@ def eq23_from_rates(rates: Any, *, fallback: Mapping[str, Any] | None = None) ->
             "k2": "1/m",
         },
         method="eq23_from_rates",
-        message=f"Eq. 23 coefficients ({source}) at V = {velocity:g} m/s",
+        message=f"Eq. 23 coefficients ({source}) at V = {velocity} m/s",
     )
 
 
@@ -334,6 +336,12 @@ def rates_at_part(
         and slab_thickness_m > 0
     ):
         raise ParameterError("slab_thickness_m", "a slab thickness > 0 m", slab_thickness_m)
+    if eq23.get("velocity_m_s") is None:
+        raise ParameterError(
+            "rates.sliding_velocity_m_s",
+            "the MCA's sliding velocity (m/s) the rates were measured at",
+            None,
+        )
     v_mca = float(eq23["velocity_m_s"])
     factor = float(phi) * float(velocity_m_s) / v_mca
     w = float(slab_thickness_m)

@@ -15,7 +15,8 @@ def _draw_stick_slip(ax, result, run) -> None:
     d = np.load(result.file("trajectory"))
     ax.plot(d["t"], d["friction"], lw=0.8, label="drive-spring force")
     if "contact_force" in d:
-        ax.plot(d["t"], d["contact_force"], lw=0.8, alpha=0.8, label="contact friction force (drive - m dv/dt)")
+        ax.plot(d["t"], d["contact_force"], lw=1.4, zorder=3, color="tab:orange",
+                label="contact friction force (drive - m dv/dt)")
     if "mu_s_N" in d:
         ax.axhline(float(d["mu_s_N"]), color="k", ls="--", lw=0.8, label="mu_s N")
         ax.axhline(float(d["mu_k_N"]), color="k", ls=":", lw=0.8, label="mu_k N")
@@ -152,11 +153,15 @@ class Macroscale(Stage):
             "max_velocity_m_s": float(np.max(res.v)),
             "duration_s": float(t[-1]) if t.size else 0.0,
             "first_slip_time_s": float(slips[0]["t"]) if slips else None,
+            # Below zero the body re-sticks; a positive minimum after the first slip means steady
+            # sliding with an oscillating velocity (e.g. the contact spring's pre-slip creep).
+            "min_velocity_after_first_slip_m_s": (
+                float(np.min(v_arr[t > slips[0]["t"]])) if slips and np.any(t > slips[0]["t"]) else None),
         }
         units = {"mu": "1", "contact_stiffness_N_m": "N/m", "contact_stiffness_bound_N_m": "N/m",
                  "contact_normal_stiffness_N_m": "N/m", "interfacial_stiffness_per_area_N_m3": "N/m^3",
                  "interface_compliance_share": "1", "mu_static": "1", "mu_kinetic": "1", "max_drive_force_N": "N", "mean_drive_force_N": "N",
-                 "max_velocity_m_s": "m/s", "duration_s": "s", "first_slip_time_s": "s"}
+                 "max_velocity_m_s": "m/s", "min_velocity_after_first_slip_m_s": "m/s", "duration_s": "s", "first_slip_time_s": "s"}
         files = {"trajectory": "trajectory.npz"}
         message = str(res.message)
         if film:
