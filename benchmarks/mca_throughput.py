@@ -216,6 +216,7 @@ def main(argv: list[str] | None = None) -> int:
         return laws_main(args.quick, csv_path, 2.0 if args.quick else args.loop)
 
     from tribolmp.lammps import mca
+    from tribolmp.lammps.mca.prepare import prepare as mca_prepare
 
     sizes = QUICK if args.quick else SIZES
     default_csv = (
@@ -240,7 +241,7 @@ def main(argv: list[str] | None = None) -> int:
                 print_interval=1e-12 * 50,
             )
             prep = Path(tmp) / label
-            variables = mca._prepare(params, prep, 1, {})
+            variables = mca_prepare(params, prep, 1, {})
             variables = {k: str(v) for k, v in variables.items()}
             variables.update(
                 drive="deck",
