@@ -72,7 +72,7 @@ def axisymmetric_table(quick: bool) -> list[dict]:
 
 
 def _references():
-    """The shipped resolved rough-contact references (tests/data/contact_references.json) and their helpers."""
+    """Load the shipped rough-contact references (tests/data/contact_references.json) and helpers."""
     import json
 
     root = Path(__file__).resolve().parents[1]
@@ -90,7 +90,7 @@ def _reference_k(cr, cls):
 
 
 def _tamaas_solve(tm, h, dx, E, P, tol):
-    """tamaas PolonskyKeerRey at mean pressure P: (time s, pressure field, mean gap m)."""
+    """Tamaas PolonskyKeerRey at mean pressure P: (time s, pressure field, mean gap m)."""
     n = h.shape[0]
     model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [n * dx, n * dx], [n, n])
     model.E, model.nu = E, 0.0

@@ -35,28 +35,40 @@ from tribolmp.models.contact.rough import (
     surface_from_coefficients,
 )
 
-SIDE = 100e-6          # m, periodic cell / punch side
-E_STAR = 1e11          # Pa
-K_S = 32               # shortest wavelength L / 32
-N_BASE = 512           # reference grid: 16 pixels per shortest wavelength
+SIDE = 100e-6  # m, periodic cell / punch side
+E_STAR = 1e11  # Pa
+K_S = 32  # shortest wavelength L / 32
+N_BASE = 512  # reference grid: 16 pixels per shortest wavelength
 # Resolution study on map 0 of each class.  (The first two classes were also run at 1024^2; on the
 # shared machine a 1024^2 study costs ~3-10 min per class, so the others use 128/256/512 with a
 # Richardson estimate of the 512^2 error.  Both are handled by resolution_errors.)
 N_STUDY = (128, 256, 512)
-N_MDR = (128, 256, 512)           # MDR lines of the map sampled at these grids
-REDUCED_PRESSURES = (0.005, 0.01, 0.02, 0.04, 0.08, 0.16)   # p / (E* h'_rms)
+N_MDR = (128, 256, 512)  # MDR lines of the map sampled at these grids
+REDUCED_PRESSURES = (0.005, 0.01, 0.02, 0.04, 0.08, 0.16)  # p / (E* h'_rms)
 MDR_REALIZATIONS = 64
 BEM_TOL = 1e-10
 
 #: name -> recipe.  rolloff_k: roll-off wave number in 2 pi / L (1 = none: self-affine from the
 #: box size on); waviness: rms height of a k = 1 waviness in units of the roughness rms height.
 CLASSES: dict[str, dict] = {
-    "H0.8-rolloff": dict(hurst=0.8, rolloff_k=4, rms_gradient=0.1, waviness=0.0, seeds=(801, 802, 803)),
-    "H0.8-selfaffine": dict(hurst=0.8, rolloff_k=1, rms_gradient=0.1, waviness=0.0, seeds=(811, 812, 813)),
-    "H0.5-rolloff": dict(hurst=0.5, rolloff_k=4, rms_gradient=0.05, waviness=0.0, seeds=(501, 502, 503)),
-    "H0.5-selfaffine": dict(hurst=0.5, rolloff_k=1, rms_gradient=0.3, waviness=0.0, seeds=(511, 512, 513)),
-    "H0.9-selfaffine": dict(hurst=0.9, rolloff_k=1, rms_gradient=0.2, waviness=0.0, seeds=(911, 912, 913)),
-    "wavy+H0.8": dict(hurst=0.8, rolloff_k=4, rms_gradient=0.1, waviness=2.0, seeds=(1801, 1802, 1803)),
+    "H0.8-rolloff": dict(
+        hurst=0.8, rolloff_k=4, rms_gradient=0.1, waviness=0.0, seeds=(801, 802, 803)
+    ),
+    "H0.8-selfaffine": dict(
+        hurst=0.8, rolloff_k=1, rms_gradient=0.1, waviness=0.0, seeds=(811, 812, 813)
+    ),
+    "H0.5-rolloff": dict(
+        hurst=0.5, rolloff_k=4, rms_gradient=0.05, waviness=0.0, seeds=(501, 502, 503)
+    ),
+    "H0.5-selfaffine": dict(
+        hurst=0.5, rolloff_k=1, rms_gradient=0.3, waviness=0.0, seeds=(511, 512, 513)
+    ),
+    "H0.9-selfaffine": dict(
+        hurst=0.9, rolloff_k=1, rms_gradient=0.2, waviness=0.0, seeds=(911, 912, 913)
+    ),
+    "wavy+H0.8": dict(
+        hurst=0.8, rolloff_k=4, rms_gradient=0.1, waviness=2.0, seeds=(1801, 1802, 1803)
+    ),
 }
 
 
@@ -70,7 +82,9 @@ def coefficients(recipe: dict, seed: int) -> np.ndarray:
         a = recipe["waviness"] * 1e-6
         for kx, ky in ((1, 0), (0, 1)):
             B[K_S + kx, K_S + ky] = a * math.sqrt(2.0) * np.exp(2j * math.pi * rng.random())
-    n0 = 4 * K_S  # any grid above 2 K_S + 1 gives the exact rms gradient of the band-limited surface
+    n0 = (
+        4 * K_S
+    )  # any grid above 2 K_S + 1 gives the exact rms gradient of the band-limited surface
     g = rms_gradient(surface_from_coefficients(B, n0), SIDE / n0)
     return B * (recipe["rms_gradient"] / g)
 
@@ -86,8 +100,11 @@ def pressures(recipe: dict) -> np.ndarray:
 
 
 def bem_curve(h: np.ndarray, dx: float, P, periodic: bool) -> dict:
-    """BEM stiffness (N/m), mean gap (m), area fraction, pixels per patch and time per pressure (s)."""
-    out = {k: [] for k in ("stiffness", "mean_gap", "area_fraction", "pixels_per_patch", "time_s", "nit")}
+    """BEM stiffness (N/m), mean gap (m), area fraction, pixels per patch, time per pressure (s)."""
+    out = {
+        k: []
+        for k in ("stiffness", "mean_gap", "area_fraction", "pixels_per_patch", "time_s", "nit")
+    }
     p0 = None
     for p in P:
         t0 = time.perf_counter()
@@ -103,23 +120,38 @@ def bem_curve(h: np.ndarray, dx: float, P, periodic: bool) -> dict:
 
 
 def mdr_curve(h: np.ndarray, dx: float, P, seed: int) -> dict:
-    """MDR ensemble (from the map's PSD): median/q10/q90 stiffness, closed fraction, median mean gap."""
+    """MDR ensemble from the map's PSD: median/q10/q90 stiffness, closed fraction, mean gap."""
     t0 = time.perf_counter()
     x, g = mdr_profiles_from_heightmap(h, dx, MDR_REALIZATIONS, np.random.default_rng(seed))
     res = stiffness_vs_load(x, g, E_STAR, P, nominal_area=(h.shape[0] * dx) ** 2)
     t = (time.perf_counter() - t0) / len(P)
     # the 1D gap of each line at its indentation: the springs only move where they touch
-    gaps = np.array([[np.mean(np.maximum(g[r] - res.approach_all[r, j], 0.0)) for j in range(len(P))] for r in range(g.shape[0])])
+    gaps = np.array(
+        [
+            [np.mean(np.maximum(g[r] - res.approach_all[r, j], 0.0)) for j in range(len(P))]
+            for r in range(g.shape[0])
+        ]
+    )
     return dict(
-        stiffness=res.stiffness.tolist(), stiffness_q10=res.stiffness_q10.tolist(), stiffness_q90=res.stiffness_q90.tolist(),
-        closed_fraction=res.closed_fraction.tolist(), mean_gap=np.median(gaps, axis=0).tolist(), time_s=t,
+        stiffness=res.stiffness.tolist(),
+        stiffness_q10=res.stiffness_q10.tolist(),
+        stiffness_q90=res.stiffness_q90.tolist(),
+        closed_fraction=res.closed_fraction.tolist(),
+        mean_gap=np.median(gaps, axis=0).tolist(),
+        time_s=t,
     )
 
 
 def extend_coarse(cls=None, *, recipe=None, m=None, P=None, base=None) -> None:
-    """Periodic BEM of maps 1, 2 ... on the study grids below their base grid: map-to-map spread of the resolution error."""
+    """Run the periodic BEM of maps 1, 2 ... on the study grids below their base grid.
+
+    This gives the map-to-map spread of the resolution error.
+    """
     if cls is not None:
-        targets, base = [(cls["recipe"], mm, np.array(cls["pressures"])) for mm in cls["maps"][1:]], n_base(cls)
+        targets, base = (
+            [(cls["recipe"], mm, np.array(cls["pressures"])) for mm in cls["maps"][1:]],
+            n_base(cls),
+        )
     else:
         targets = [(recipe, m, P)]
     for rec, mm, PP in targets:
@@ -131,20 +163,26 @@ def extend_coarse(cls=None, *, recipe=None, m=None, P=None, base=None) -> None:
 
 
 def n_base(cls: dict) -> int:
-    """Base grid of a class's per-map references (512, or 256 for the classes run in the light mode)."""
+    """Return the base grid of a class's per-map references (512, or 256 in the light mode)."""
     return int(cls.get("n_base", N_BASE))
 
 
 def run_class(name: str, log=print, base: int = N_BASE) -> dict:
-    """All references of one class: resolution study on map 0, base-grid BEM (periodic + punch) and MDR per map.
+    """Compute all references of one class: study on map 0, base-grid BEM and MDR per map.
 
     ``base = 256`` is the light mode for a crowded machine: maps on 256^2 (8 pixels per shortest
     wavelength), the study still reaching 512^2 for the periodic cell (punch: 128/256).
     """
     recipe = CLASSES[name]
     P = pressures(recipe)
-    out = dict(recipe=dict(recipe, seeds=list(recipe["seeds"])), pressures=P.tolist(), reduced_pressures=list(REDUCED_PRESSURES),
-               resolution={}, maps=[], n_base=int(base))
+    out = dict(
+        recipe=dict(recipe, seeds=list(recipe["seeds"])),
+        pressures=P.tolist(),
+        reduced_pressures=list(REDUCED_PRESSURES),
+        resolution={},
+        maps=[],
+        n_base=int(base),
+    )
     s0 = recipe["seeds"][0]
     for n in N_STUDY:
         h, dx = reference_surface(recipe, s0, n)
@@ -153,8 +191,12 @@ def run_class(name: str, log=print, base: int = N_BASE) -> dict:
         if n <= base:
             entry["punch"] = bem_curve(h, dx, P, False)
         out["resolution"][str(n)] = entry
-        log(f"  {name} resolution n={n}: periodic k {np.round(per['stiffness'], 1).tolist()} ppp {np.round(per['pixels_per_patch'], 1).tolist()} "
-            f"t {sum(per['time_s']):.1f} s" + (f" punch t {sum(entry['punch']['time_s']):.1f} s" if "punch" in entry else ""))
+        log(
+            f"  {name} resolution n={n}: periodic k {np.round(per['stiffness'], 1).tolist()} ppp "
+            f"{np.round(per['pixels_per_patch'], 1).tolist()} "
+            f"t {sum(per['time_s']):.1f} s"
+            + (f" punch t {sum(entry['punch']['time_s']):.1f} s" if "punch" in entry else "")
+        )
     for i, seed in enumerate(recipe["seeds"]):
         m = {"seed": seed}
         if i == 0:
@@ -171,7 +213,8 @@ def run_class(name: str, log=print, base: int = N_BASE) -> dict:
             h, dx = reference_surface(recipe, seed, n)
             m["mdr"][str(n)] = mdr_curve(h, dx, P, seed + 7919 * n)
         out["maps"].append(m)
-        log(f"  {name} map {seed}: k_MDR/k_per {np.round(np.array(m['mdr'][str(N_BASE)]['stiffness']) / m['periodic']['stiffness'], 3).tolist()}")
+        ratio = np.array(m["mdr"][str(N_BASE)]["stiffness"]) / m["periodic"]["stiffness"]
+        log(f"  {name} map {seed}: k_MDR/k_per {np.round(ratio, 3).tolist()}")
     return out
 
 
@@ -185,7 +228,7 @@ RESOLVED_REL = 0.02
 
 
 def _richardson(k_coarse, k_mid, k_fine):
-    """Estimated relative error of ``k_fine`` from three grids halving dx (observed order clipped to 1..4)."""
+    """Relative error estimate of ``k_fine`` from three grids halving dx (order clipped to 1..4)."""
     d1, d2 = abs(k_mid - k_coarse), abs(k_fine - k_mid)
     order = min(4.0, max(1.0, math.log2(d1 / d2))) if d1 > 0 and d2 > 0 else 2.0
     return d2 / (2**order - 1) / abs(k_fine)
@@ -198,28 +241,37 @@ def resolution_errors(cls: dict) -> dict:
     ns = sorted(int(n) for n in res)
     kp = {n: np.array(res[str(n)]["periodic"]["stiffness"]) for n in ns}
     nf = ns[-1]
-    e_fine = np.array([_richardson(kp[ns[-3]][j], kp[ns[-2]][j], kp[nf][j]) for j in range(kp[nf].size)])
+    e_fine = np.array(
+        [_richardson(kp[ns[-3]][j], kp[ns[-2]][j], kp[nf][j]) for j in range(kp[nf].size)]
+    )
     per = {n: np.abs(kp[n] / kp[nf] - 1) + e_fine for n in ns if n != nf}
     per[nf] = e_fine
     # maps 1, 2 ...: coarse grids against their own base-grid reference, plus the base grid's error
     for m in cls["maps"][1:]:
         kb = np.array(m["periodic"]["stiffness"])
         for n, c in m.get("periodic_coarse", {}).items():
-            per[int(n)] = np.maximum(per[int(n)], np.abs(np.array(c["stiffness"]) / kb - 1) + per[nb])
+            per[int(n)] = np.maximum(
+                per[int(n)], np.abs(np.array(c["stiffness"]) / kb - 1) + per[nb]
+            )
     npun = sorted(n for n in ns if "punch" in res[str(n)])
     kq = {n: np.array(res[str(n)]["punch"]["stiffness"]) for n in npun}
     nq = npun[-1]
     if len(npun) >= 3:
-        q_fine = np.array([_richardson(kq[npun[-3]][j], kq[npun[-2]][j], kq[nq][j]) for j in range(kq[nq].size)])
-    else:  # two punch grids (light mode): the whole last change as the error (first order, conservative)
+        q_fine = np.array(
+            [_richardson(kq[npun[-3]][j], kq[npun[-2]][j], kq[nq][j]) for j in range(kq[nq].size)]
+        )
+    else:  # two punch grids (light mode): the whole last change as the error (conservative)
         q_fine = np.abs(kq[nq] / kq[npun[-2]] - 1)
     pun = {n: np.abs(kq[n] / kq[nq] - 1) + q_fine for n in npun if n != nq}
     pun[nq] = q_fine
-    return {"periodic": per, "punch": pun,
-            "moved": np.abs(kp[nf] / kp[ns[-2]] - 1),  # change between the two finest grids
-            "ppp": np.array(res[str(nb)]["periodic"]["pixels_per_patch"]),
-            "n_base": nb,
-            "time": {n: np.array(res[str(n)]["periodic"]["time_s"]) for n in ns}}
+    return {
+        "periodic": per,
+        "punch": pun,
+        "moved": np.abs(kp[nf] / kp[ns[-2]] - 1),  # change between the two finest grids
+        "ppp": np.array(res[str(nb)]["periodic"]["pixels_per_patch"]),
+        "n_base": nb,
+        "time": {n: np.array(res[str(n)]["periodic"]["time_s"]) for n in ns},
+    }
 
 
 def resolved_mask(cls: dict) -> np.ndarray:
@@ -230,7 +282,7 @@ def resolved_mask(cls: dict) -> np.ndarray:
 
 
 def ratios(cls: dict, n_mdr: int = N_BASE) -> dict:
-    """Per map x pressure: k_MDR / k_periodic, k_MDR / k_punch, gap_MDR / gap_BEM, MDR closed fraction."""
+    """Per map x pressure: k_MDR/k_periodic, k_MDR/k_punch, gap_MDR/gap_BEM, MDR closed fraction."""
     out = {k: [] for k in ("periodic", "punch", "gap", "closed", "k_periodic", "k_mdr")}
     for m in cls["maps"]:
         md = m["mdr"][str(n_mdr)]
@@ -245,11 +297,13 @@ def ratios(cls: dict, n_mdr: int = N_BASE) -> dict:
 
 
 def summarise(refs: dict) -> tuple[str, dict]:
-    """The ratio table (markdown) and the planner's speed-error table from the references."""
+    """Build the ratio table (markdown) and the planner's speed-error table from the references."""
     setup = refs["setup"]
     pb = np.array(setup["reduced_pressures"])
     lines = [
-        "| class | p/(E* h'rms) | area fraction | patch px | k res. err | MDR closed | k_MDR/k_periodic | k_MDR/k_punch | gap_MDR/gap_BEM | k_per max/min (maps) | k_MDR max/min |",
+        "| class | p/(E* h'rms) | area fraction | patch px | k res. err | MDR closed | "
+        "k_MDR/k_periodic | k_MDR/k_punch | gap_MDR/gap_BEM | k_per max/min (maps) | k_MDR "
+        "max/min |",
         "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     mdr_err = {n: np.zeros(pb.size) for n in setup["n_mdr"]}
@@ -272,9 +326,12 @@ def summarise(refs: dict) -> tuple[str, dict]:
         for j, p in enumerate(pb):
             flag = "" if ok[j] else " (unresolved: excluded)"
             lines.append(
-                f"| {name} ({e['n_base']}²) | {p:g}{flag} | {area[j]:.3f} | {ppp[j]:.0f} | {e['periodic'][e['n_base']][j]:.1%} | "
-                f"{np.mean(r['closed'][:, j]):.0%} | {span(r['periodic'], j)} | {span(r['punch'], j)} | {span(r['gap'], j)} | "
-                f"{np.max(r['k_periodic'][:, j]) / np.min(r['k_periodic'][:, j]):.2f} | {np.max(r['k_mdr'][:, j]) / np.min(r['k_mdr'][:, j]):.2f} |"
+                f"| {name} ({e['n_base']}²) | {p:g}{flag} | {area[j]:.3f} | {ppp[j]:.0f} | "
+                f"{e['periodic'][e['n_base']][j]:.1%} | "
+                f"{np.mean(r['closed'][:, j]):.0%} | {span(r['periodic'], j)} | "
+                f"{span(r['punch'], j)} | {span(r['gap'], j)} | "
+                f"{np.max(r['k_periodic'][:, j]) / np.min(r['k_periodic'][:, j]):.2f} | "
+                f"{np.max(r['k_mdr'][:, j]) / np.min(r['k_mdr'][:, j]):.2f} |"
             )
         for n in setup["n_mdr"]:
             rn = ratios(cls, n)
@@ -300,30 +357,58 @@ def summarise(refs: dict) -> tuple[str, dict]:
             continue
         rng = [float(p / half), float(p * half)]
         for n in setup["n_mdr"]:
-            rows.append(dict(method="mdr", mesh=int(n), rel_error=float(mdr_err[n][j]), time_s=float(mdr_time[n]),
-                             reduced_pressure_range=rng, closed_fraction_max=float(mdr_closed[j]),
-                             rel_error_vs_punch=float(mdr_err_punch[n][j])))
+            rows.append(
+                dict(
+                    method="mdr",
+                    mesh=int(n),
+                    rel_error=float(mdr_err[n][j]),
+                    time_s=float(mdr_time[n]),
+                    reduced_pressure_range=rng,
+                    closed_fraction_max=float(mdr_closed[j]),
+                    rel_error_vs_punch=float(mdr_err_punch[n][j]),
+                )
+            )
         for n in sorted(bem_err):
-            # time: median over classes and pressures (single solves on the shared machine scatter by 10x)
-            rows.append(dict(method="bem", mesh=int(n), rel_error=float(bem_err[n][j]), time_s=float(np.median(bem_time[n])),
-                             reduced_pressure_range=rng))
+            # time: median over classes and pressures (single solves on the shared machine
+            # scatter by 10x)
+            rows.append(
+                dict(
+                    method="bem",
+                    mesh=int(n),
+                    rel_error=float(bem_err[n][j]),
+                    time_s=float(np.median(bem_time[n])),
+                    reduced_pressure_range=rng,
+                )
+            )
     table = {
         "provenance": (
-            "built by tests/data/generate_reference_data.py (contact-summary) from tests/data/contact_references.json: "
-            f"{len(refs['classes'])} band-limited rough surface classes ({', '.join(refs['classes'])}), 3 maps each, side "
-            f"{setup['side_m']:g} m, shortest wavelength L/{setup['k_s']}. Reference: the periodic 3D BEM interfacial stiffness "
-            f"on {setup['n_base']}^2 (resolution study to {max(setup['n_study'])}^2). mdr rows: worst |k_MDR/k_BEM,periodic - 1| "
-            f"over classes and maps of the {setup['mdr_realizations']}-line ensemble median from the map sampled at mesh^2, with the "
-            "largest fraction of closed MDR lines (rel_error_vs_punch: the same against the rigid square punch BEM of side L, "
-            "for information); bem rows: the periodic BEM's discretisation error at mesh^2 (difference to the "
-            "finest grid plus its Richardson error estimate), worst over classes, enveloped so that a coarser grid never claims less "
+            "built by tests/data/generate_reference_data.py (contact-summary) from "
+            "tests/data/contact_references.json: "
+            f"{len(refs['classes'])} band-limited rough surface classes "
+            f"({', '.join(refs['classes'])}), 3 maps each, side "
+            f"{setup['side_m']:g} m, shortest wavelength L/{setup['k_s']}. Reference: the "
+            "periodic 3D BEM interfacial stiffness "
+            f"on {setup['n_base']}^2 (resolution study to {max(setup['n_study'])}^2). mdr rows: "
+            "worst |k_MDR/k_BEM,periodic - 1| "
+            f"over classes and maps of the {setup['mdr_realizations']}-line ensemble median from "
+            "the map sampled at mesh^2, with the "
+            "largest fraction of closed MDR lines (rel_error_vs_punch: the same against the rigid "
+            "square punch BEM of side L, "
+            "for information); bem rows: the periodic BEM's discretisation error at mesh^2 "
+            "(difference to the "
+            "finest grid plus its Richardson error estimate), worst over classes, enveloped so "
+            "that a coarser grid never claims less "
             "error than a finer one. Only resolved reference pressures "
-            f"(>= {RESOLVED_PPP:g} pixels per contact patch and <= {RESOLVED_REL:.0%} change to the finer grid). time_s: wall time per "
-            "pressure on 2 shared cores (BEM: median over classes and pressures of warm-started ascending-pressure solves incl. the tangent-stiffness solve; MDR: worst class)."
+            f"(>= {RESOLVED_PPP:g} pixels per contact patch and <= {RESOLVED_REL:.0%} change to "
+            "the finer grid). time_s: wall time per "
+            "pressure on 2 shared cores (BEM: median over classes and pressures of warm-started "
+            "ascending-pressure solves incl. the tangent-stiffness solve; MDR: worst class)."
         ),
-        "quantity": "relative error of the normal contact stiffness against the resolved periodic 3D BEM interfacial stiffness",
+        "quantity": "relative error of the normal contact stiffness against the resolved periodic "
+        "3D BEM interfacial stiffness",
         "mesh_unit": "grid points per side of the height map (MDR: lines of that many springs)",
-        "reduced_pressure": "p / (E* h'_rms), h'_rms the rms gradient of the surface; rows apply to their reduced_pressure_range",
+        "reduced_pressure": "p / (E* h'_rms), h'_rms the rms gradient of the surface; rows apply "
+        "to their reduced_pressure_range",
         "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
         "rows": rows,
     }
@@ -331,9 +416,12 @@ def summarise(refs: dict) -> tuple[str, dict]:
 
 
 def resolution_table(refs: dict) -> str:
-    """Markdown: the resolution study (map 0 of each class), stiffness relative to the finest grid."""
-    lines = ["| class | p/(E* h'rms) | patch px (128/256/512) | k128/k_f - 1 | k256/k_f - 1 | k512/k_f - 1 | finest grid, est. error | punch k_n/2 / k_n - 1 |",
-             "|---|---|---|---|---|---|---|---|"]
+    """Markdown: resolution study (map 0 of each class), stiffness relative to the finest grid."""
+    lines = [
+        "| class | p/(E* h'rms) | patch px (128/256/512) | k128/k_f - 1 | k256/k_f - 1 | k512/k_f "
+        "- 1 | finest grid, est. error | punch k_n/2 / k_n - 1 |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
     for name, cls in refs["classes"].items():
         res = cls["resolution"]
         ns = sorted(int(n) for n in res)
@@ -343,9 +431,15 @@ def resolution_table(refs: dict) -> str:
         nq = max(int(n) for n in res if "punch" in res[n])
         kq = {n: np.array(res[str(n)]["punch"]["stiffness"]) for n in (nq // 2, nq)}
         for j, p in enumerate(cls["reduced_pressures"]):
-            ppp = "/".join(f"{res[str(n)]['periodic']['pixels_per_patch'][j]:.0f}" for n in (128, 256, 512))
+            ppp = "/".join(
+                f"{res[str(n)]['periodic']['pixels_per_patch'][j]:.0f}" for n in (128, 256, 512)
+            )
             rel = [res[str(n)]["periodic"]["stiffness"][j] / kf[j] - 1 for n in (128, 256, 512)]
             fin = "-" if nf == 512 else ""
-            lines.append(f"| {name} | {p:g} | {ppp} | {rel[0]:+.2%} | {rel[1]:+.2%} | {fin or f'{rel[2]:+.2%}'} | "
-                         f"{nf}², {e['periodic'][nf][j]:.2%} | {kq[nq // 2][j] / kq[nq][j] - 1:+.2%} ({nq // 2}/{nq}) |")
+            lines.append(
+                f"| {name} | {p:g} | {ppp} | {rel[0]:+.2%} | {rel[1]:+.2%} | "
+                f"{fin or f'{rel[2]:+.2%}'} | "
+                f"{nf}², {e['periodic'][nf][j]:.2%} | {kq[nq // 2][j] / kq[nq][j] - 1:+.2%} "
+                f"({nq // 2}/{nq}) |"
+            )
     return "\n".join(lines) + "\n"

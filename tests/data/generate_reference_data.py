@@ -26,11 +26,12 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from tests.data import DATA_DIR, RECIPES, generate  # noqa: E402
-
 import os  # noqa: E402
 
-# TRIBOLMP_CONTACT_JSON: write the contact classes elsewhere (parallel runs, merged by "contact-merge:A,B")
+from tests.data import DATA_DIR, RECIPES, generate  # noqa: E402
+
+# TRIBOLMP_CONTACT_JSON: write the contact classes elsewhere (parallel runs, merged by
+# "contact-merge:A,B")
 CONTACT_JSON = Path(os.environ.get("TRIBOLMP_CONTACT_JSON", DATA_DIR / "contact_references.json"))
 
 
@@ -39,21 +40,36 @@ def _contact(classes: list[str], base: int | None = None) -> None:
 
     refs = json.loads(CONTACT_JSON.read_text()) if CONTACT_JSON.exists() else {}
     refs.setdefault("classes", {})
-    refs["setup"] = dict(side_m=cr.SIDE, E_star_Pa=cr.E_STAR, k_s=cr.K_S, n_base=cr.N_BASE, n_study=list(cr.N_STUDY),
-                         n_mdr=list(cr.N_MDR), mdr_realizations=cr.MDR_REALIZATIONS, bem_tol=cr.BEM_TOL,
-                         reduced_pressures=list(cr.REDUCED_PRESSURES),
-                         note="stiffness N/m of the L x L cell (periodic) or L x L rigid punch; mean_gap m; time_s per pressure")
+    refs["setup"] = dict(
+        side_m=cr.SIDE,
+        E_star_Pa=cr.E_STAR,
+        k_s=cr.K_S,
+        n_base=cr.N_BASE,
+        n_study=list(cr.N_STUDY),
+        n_mdr=list(cr.N_MDR),
+        mdr_realizations=cr.MDR_REALIZATIONS,
+        bem_tol=cr.BEM_TOL,
+        reduced_pressures=list(cr.REDUCED_PRESSURES),
+        note=(
+            "stiffness N/m of the L x L cell (periodic) or L x L rigid punch; mean_gap m; "
+            "time_s per pressure"
+        ),
+    )
     for name in classes:
         t0 = time.perf_counter()
         print(f"contact class {name} ...", flush=True)
-        refs["classes"][name] = cr.run_class(name, log=lambda s: print(s, flush=True), base=base or cr.N_BASE)
+        refs["classes"][name] = cr.run_class(
+            name, log=lambda s: print(s, flush=True), base=base or cr.N_BASE
+        )
         refs["created_utc"] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
-        CONTACT_JSON.write_text(json.dumps(refs, indent=None, separators=(",", ":")) + "\n")  # saved after every class
+        CONTACT_JSON.write_text(
+            json.dumps(refs, indent=None, separators=(",", ":")) + "\n"
+        )  # saved after every class
         print(f"contact class {name}: {time.perf_counter() - t0:.0f} s wall", flush=True)
 
 
 def _contact_coarse() -> None:
-    """Add the coarse-grid periodic runs of maps 1, 2 to classes generated without them (no other solves)."""
+    """Add the coarse-grid periodic runs of maps 1, 2 to classes generated without them."""
     from tests.data import contact_references as cr
 
     refs = json.loads(CONTACT_JSON.read_text())

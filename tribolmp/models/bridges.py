@@ -465,8 +465,10 @@ def interfacial_stiffness_per_area(
     """
     p = np.asarray(pressures, float)
     # A closed periodic cell (BEM area fraction 1) has k = inf, which the stage's JSON stores as
-    # null (read back as nan): the interface is then rigid, and the series with the punch is the punch.
-    k = np.asarray([np.inf if v is None else v for v in np.asarray(stiffness, dtype=object).ravel()], float)
+    # null (read back as nan): the interface is then rigid, and the series with the punch is the
+    # punch.
+    vals = np.asarray(stiffness, dtype=object).ravel()
+    k = np.asarray([np.inf if v is None else v for v in vals], float)
     k = np.where(np.isnan(k), np.inf, k) / float(patch_area_m2)
     if p.size == 1:
         if not math.isclose(p[0], pressure_Pa, rel_tol=1e-9):
