@@ -249,3 +249,17 @@ def test_scene_overrides_a_measured_surface_only_when_given_and_the_report_says_
     Topography(h.T, (32.0, 32.0), unit="µm").to_x3p(str(tmp_path / "m.x3p"))
     res = run_chain({**base, "roughness": {**rough, "surface_file": str(tmp_path / "m.x3p")}}, out=tmp_path / "c")
     assert res["contact"]["pixel_size_m"] == pytest.approx(2e-6) and "file metadata" in res["contact"]["surface"]
+
+
+def test_running_in_initial_surface_may_be_a_measured_file(tmp_path, rng):
+    from tribolmp.models.runin import part_surface
+
+    h = rng.normal(size=(32, 32)) * 0.3  # µm
+    Topography(h.T, (64.0, 64.0), unit="µm").to_x3p(str(tmp_path / "part.x3p"))
+    common = dict(rms_height=0.5e-6, hurst=0.8, rolloff_wavelength=1e-4, short_cutoff_wavelength=8e-6,
+                  grid_points=32, pixel_size=5e-6, rng=np.random.default_rng(0), surface_file=str(tmp_path / "part.x3p"))
+    h0, dx, src = part_surface(**common)
+    assert dx == pytest.approx(2e-6) and np.allclose(h0, h * 1e-6)  # the file's size and unit, not the scene's pixel
+    assert "x3p" in src and "file metadata" in src
+    h1, dx1, src1 = part_surface(**common, surface_options={"pixel_size": 1e-6, "detrend": "mean"})
+    assert dx1 == 1e-6 and "override" in src1 and "detrend mean" in src1

@@ -122,6 +122,7 @@ def part_surface(
     rng: np.random.Generator,
     surface_file: str = "",
     rescale: bool = True,
+    surface_options: dict[str, Any] | None = None,
 ) -> tuple[np.ndarray, float, str]:
     """Return the part's initial surface: a height map, or ``[roughness]`` at its size and pixel.
 
@@ -140,8 +141,15 @@ def part_surface(
 
     if surface_file:
         from .contact.solve import load_surface
+        from .topography.measured import surface_provenance
 
-        h, dx = load_surface(surface_file)
+        # A measured file (any SurfaceTopography format): units and pixel from its metadata,
+        # [roughness].surface_* overrides only when given (issue 16); the source names which.
+        opts = {k: v for k, v in (surface_options or {}).items() if v is not None}
+        h, dx = load_surface(
+            surface_file, opts.get("pixel_size"), unit=opts.get("unit"),
+            detrend=opts.get("detrend", "none"), missing=opts.get("missing", "refuse"),
+        )
         dx = pixel_size if dx is None else dx
         if h.shape[0] != h.shape[1] or h.shape[0] % 2:
             raise ParameterError(
@@ -149,7 +157,7 @@ def part_surface(
                 "a square height map with an even side",
                 f"shape {h.shape}",
             )
-        return h, float(dx), f"height map {surface_file}"
+        return h, float(dx), "height map " + surface_provenance(surface_file, pixel_size, **opts)
     psd = self_affine_psd(rms_height, hurst, rolloff_wavelength, short_cutoff_wavelength)
     h = generate_surface(grid_points, pixel_size, psd, rng)
     if rescale:

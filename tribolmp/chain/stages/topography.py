@@ -254,7 +254,9 @@ def _running_in(ctx: StageContext) -> StageOutput:
     h0, dx, surf_src = runin.part_surface(
         rms_height=rough.rms_height, hurst=rough.hurst, rolloff_wavelength=rough.rolloff_wavelength,
         short_cutoff_wavelength=rough.short_cutoff_wavelength, grid_points=rough.grid_points,
-        pixel_size=rough.pixel_size, rng=surf_rng, surface_file=rough.surface_file)
+        pixel_size=rough.pixel_size, rng=surf_rng, surface_file=rough.surface_file,
+        surface_options={"pixel_size": rough.surface_pixel_size or None, "unit": rough.surface_unit or None,
+                         "detrend": rough.surface_detrend, "missing": rough.surface_missing})
     geo = scene.geometry
     area = geo.apparent_length * geo.apparent_width
     seed = int(ctx.seed[-1]) if ctx.seed else 0
