@@ -236,7 +236,7 @@ def test_params_from_scene():
     scene = default_scene()
     p = params_from_scene(scene)
     assert isinstance(p, RoughParams)
-    assert p.modulus == pytest.approx(scene.effective_modulus) and p.pressures == tuple(scene.load.pressures)
+    assert p.E_star == pytest.approx(scene.effective_modulus) and p.pressures == tuple(scene.load.pressures)
     sphere = dataclasses.replace(scene, geometry=dataclasses.replace(scene.geometry, profile="sphere"))
     ap = params_from_scene(sphere)
     res = solve(ap)

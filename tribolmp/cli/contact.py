@@ -23,7 +23,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     a.add_argument("--half-angle", type=float, dest="half_angle", help="cone half-angle from the axis (deg); f(r) = r/tan(angle)")
     a.add_argument("--exponent", type=float, help="power law f = c r^n: n")
     a.add_argument("--coefficient", type=float, help="power law f = c r^n: c (m^(1-n))")
-    a.add_argument("--modulus", type=float, required=True, help="effective modulus E* (Pa)")
+    a.add_argument("--E-star", "--modulus", dest="modulus", type=float, required=True, help="effective modulus E* (Pa); --modulus is the old spelling")
     a.add_argument("--indentation", type=float, required=True, help="rigid indentation d (m); negative only with adhesion")
     a.add_argument("--work-of-adhesion", type=float, default=0.0, dest="work_of_adhesion", help="Dupre work of adhesion (J/m^2), JKR via Hess's rule")
     a.add_argument("--method", choices=("mdr", "bem"), default="mdr", help="solver (default mdr)")
@@ -38,7 +38,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     r.add_argument("--detrend", default="none", choices=("none", "mean", "plane", "curvature"), help="detrend the surface first")
     r.add_argument("--fill-missing", action="store_true", help="fill missing data points (harmonic interpolation) instead of refusing the file")
     r.add_argument("--pixel-size", type=float, dest="pixel_size", help="grid spacing (m); default from the sidecar JSON 'pixel_size_m'")
-    r.add_argument("--modulus", type=float, required=True, help="effective modulus E* (Pa)")
+    r.add_argument("--E-star", "--modulus", dest="modulus", type=float, required=True, help="effective modulus E* (Pa); --modulus is the old spelling")
     r.add_argument("--pressures", type=float_list, required=True, help="nominal pressures p1,p2,... (Pa)")
     r.add_argument("--method", choices=("mdr", "bem"), default="mdr", help="MDR ensemble or 3D BEM (default mdr)")
     r.add_argument("--periodic", action="store_true", help="BEM: periodic cell (default: rigid rough square punch of side N*DX)")
@@ -57,8 +57,10 @@ def run(args: argparse.Namespace) -> int:
 def _axisymmetric(args) -> int:
     from ..errors import ParameterError
     from ..models.contact import AxisymmetricParams, solve
+    from ..params import check_positive
 
-    kw = dict(profile=args.profile, modulus=args.modulus, indentation=args.indentation, work_of_adhesion=args.work_of_adhesion, springs=args.springs, grid=args.grid)
+    check_positive("--E-star/--modulus", args.modulus, "Pa")
+    kw = dict(profile=args.profile, E_star=args.modulus, indentation=args.indentation, work_of_adhesion=args.work_of_adhesion, springs=args.springs, grid=args.grid)
     need = {"sphere": ("radius",), "flat": ("radius",), "cone": ("half_angle",), "power": ("exponent", "coefficient")}[args.profile]
     names = {"radius": "radius", "half_angle": "half_angle_deg", "exponent": "exponent", "coefficient": "coefficient"}
     for opt in need:
@@ -97,7 +99,7 @@ def _rough(args) -> int:
     from ..models.contact import solve_rough
     from ..models.contact.solve import load_surface
 
-    check_positive("modulus", args.modulus, "Pa")
+    check_positive("--E-star/--modulus", args.modulus, "Pa")
     if args.pixel_size is not None:
         check_positive("pixel_size", args.pixel_size, "m")
     h, dx = load_surface(args.surface, args.pixel_size, unit=args.unit, detrend=args.detrend,

@@ -183,7 +183,7 @@ class Contact(Stage):
             else:
                 source = "random surface from [roughness]"
         res = solve_rough(
-            h, dx, params.modulus, params.pressures, method=method, periodic=params.periodic,
+            h, dx, params.E_star, params.pressures, method=method, periodic=params.periodic,
             realizations=params.realizations, rng=ens_rng,
         )
         arrays = {k: np.asarray(res[k]) for k in ("pressure", "force", "stiffness", "approach", "stiffness_q10", "stiffness_q90", "area_fraction") if k in res}
@@ -191,7 +191,7 @@ class Contact(Stage):
                  q90=arrays.get("stiffness_q90", arrays["stiffness"]), **arrays)
         values: dict[str, Any] = {k: v.tolist() for k, v in arrays.items()}
         values.update(surface=source, grid=int(h.shape[0]), pixel_size_m=float(dx), surface_rms_m=float(np.std(h)),
-                      E_star_Pa=float(params.modulus), realizations=int(params.realizations) if method == "mdr" else None,
+                      E_star_Pa=float(params.E_star), realizations=int(params.realizations) if method == "mdr" else None,
                       periodic=bool(params.periodic) if method == "bem" else None)
         if mesh_note:
             values["mesh_note"] = mesh_note
@@ -217,7 +217,7 @@ def _contact_axisymmetric(ctx: StageContext, method: str) -> StageOutput:
               if k in sweep}
     np.savez(ctx.workdir / "stiffness.npz", **arrays)
     values: dict[str, Any] = {k: v.tolist() for k, v in arrays.items()}
-    values.update(profile=ctx.scene.geometry.profile, E_star_Pa=float(base.modulus), springs=sweep["springs"])
+    values.update(profile=ctx.scene.geometry.profile, E_star_Pa=float(base.E_star), springs=sweep["springs"])
     units = {"force": "N", "contact_radius": "m", "indentation": "m", "stiffness": "N/m", "pressure": "Pa", "E_star_Pa": "Pa"}
     files = {"stiffness": "stiffness.npz"} if "stiffness" in arrays else {"contact_curve": "stiffness.npz"}
     return StageOutput(values=values, units=units, files=files, method=method,

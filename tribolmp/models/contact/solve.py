@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import BlowUpError, MissingFeatureError, ParameterError, SurfaceFileError
-from ...scene.fields import param, validate_dataclass
+from ...params import param, renamed, validate_dataclass
 from ..base import MethodRegistry, Result
 from . import mdr as _mdr
 from . import reference as _ref
@@ -46,6 +46,7 @@ REG = MethodRegistry("contact")
 ROUGH_REG = MethodRegistry("rough contact")
 
 
+@renamed(modulus="E_star")  # old name kept (docs/conventions.md)
 @dataclass(frozen=True)
 class AxisymmetricParams:
     """An axisymmetric rigid indenter on an elastic half-space (SI units).
@@ -54,7 +55,7 @@ class AxisymmetricParams:
     """
 
     profile: str = param("sphere", choices=_mdr.PROFILE_KINDS, doc="Indenter shape.")
-    modulus: float = param(1e11, unit="Pa", lo=0.0, lo_open=True, hi=1e13, doc="Effective modulus E*.")
+    E_star: float = param(1e11, unit="Pa", lo=0.0, lo_open=True, hi=1e13, doc="Effective modulus E*.")
     radius: float = param(1e-3, unit="m", lo=0.0, lo_open=True, hi=1e3, doc="Sphere radius / punch radius.")
     half_angle_deg: float = param(80.0, unit="deg", lo=0.0, hi=90.0, lo_open=True, hi_open=True, doc="Cone half-angle from the axis.")
     exponent: float = param(2.0, lo=0.0, lo_open=True, hi=100.0, doc="Power-law exponent n of f = c r^n.")
@@ -99,11 +100,12 @@ class AxisymmetricParams:
         return _mdr.kappa(self.exponent) * self.coefficient * x**self.exponent
 
 
+@renamed(modulus="E_star")  # old name kept (docs/conventions.md)
 @dataclass(frozen=True)
 class RoughParams:
     """A rigid rough surface on an elastic half-space, loaded by nominal pressures (SI units)."""
 
-    modulus: float = param(1e11, unit="Pa", lo=0.0, lo_open=True, hi=1e13, doc="Effective modulus E*.")
+    E_star: float = param(1e11, unit="Pa", lo=0.0, lo_open=True, hi=1e13, doc="Effective modulus E*.")
     pixel_size: float = param(2e-6, unit="m", lo=0.0, lo_open=True, hi=1.0, doc="Grid spacing of the height map.")
     pressures: tuple[float, ...] = param((1e5, 1e6, 1e7, 1e8), unit="Pa", lo=0.0, lo_open=True, doc="Nominal pressures.")
     periodic: bool = param(True, doc="BEM: periodic cell (True) or rigid square punch (False).")
@@ -125,8 +127,8 @@ class RoughParams:
         if not self.pressures:
             raise ParameterError("pressures", "at least one pressure", "an empty list")
         for p in self.pressures:
-            if p >= self.modulus:
-                raise ParameterError("pressures", f"pressures below the modulus ({self.modulus:g} Pa)", p)
+            if p >= self.E_star:
+                raise ParameterError("pressures", f"pressures below the modulus ({self.E_star:g} Pa)", p)
 
 
 # ---------------------------------------------------------------- axisymmetric
@@ -141,7 +143,7 @@ def _radius_estimate(p: AxisymmetricParams, d: float) -> float:
     w = p.work_of_adhesion
 
     def h(a, dd):
-        return float(p.g(a)) - math.sqrt(2 * math.pi * a * w / p.modulus) - dd
+        return float(p.g(a)) - math.sqrt(2 * math.pi * a * w / p.E_star) - dd
 
     def root(dd):
         # bracket from below: with adhesion h(0) = -dd may vanish, the physical root is the positive one
@@ -178,11 +180,11 @@ def _solve_mdr(p: AxisymmetricParams) -> Result:
         d = p.indentation
     if p.work_of_adhesion > 0:
         x, g = _row(p, _radius_estimate(p, d))
-        model = _mdr.AxisymmetricMDR(x, g, p.modulus, p.work_of_adhesion)
+        model = _mdr.AxisymmetricMDR(x, g, p.E_star, p.work_of_adhesion)
         if p.profile == "flat":
-            edge = math.sqrt(2 * math.pi * p.radius * p.work_of_adhesion / p.modulus)
-            a, F = p.radius, 2 * p.modulus * p.radius * d
-            po = po_d = -2 * p.modulus * p.radius * edge
+            edge = math.sqrt(2 * math.pi * p.radius * p.work_of_adhesion / p.E_star)
+            a, F = p.radius, 2 * p.E_star * p.radius * d
+            po = po_d = -2 * p.E_star * p.radius * edge
         else:
             a, F = model.jkr_at_indentation(d)
             po = model.pull_off("force")["force"]
@@ -191,9 +193,9 @@ def _solve_mdr(p: AxisymmetricParams) -> Result:
     else:
         x, g = _row(p, _radius_estimate(p, d))
         out.update(
-            force=_mdr.normal_force(x, g, d, p.modulus),
+            force=_mdr.normal_force(x, g, d, p.E_star),
             contact_radius=_mdr.contact_radius(x, g, d),
-            stiffness=_mdr.normal_stiffness(x, g, d, p.modulus),
+            stiffness=_mdr.normal_stiffness(x, g, d, p.E_star),
         )
     out.update(indentation=d, springs=int(x.size), spacing=float(x[1] - x[0]))
     return out
@@ -205,14 +207,14 @@ def _indentation_for_force(p: AxisymmetricParams) -> float:
     if p.work_of_adhesion > 0:
         raise MissingFeatureError("normal_force with adhesion: give the indentation instead")
     if p.profile == "sphere":
-        return float(_ref.hertz_indentation(F, p.radius, p.modulus))
+        return float(_ref.hertz_indentation(F, p.radius, p.E_star))
     if p.profile == "cone":
-        return math.sqrt(F * math.pi / (2 * p.modulus * math.tan(math.radians(p.half_angle_deg))))
+        return math.sqrt(F * math.pi / (2 * p.E_star * math.tan(math.radians(p.half_angle_deg))))
     if p.profile == "flat":
-        return F / (2 * p.modulus * p.radius)
+        return F / (2 * p.E_star * p.radius)
     n, k = p.exponent, _mdr.kappa(p.exponent) * p.coefficient
     # F = 2 E* d a n/(n+1) with a = (d/k)^(1/n)  ->  d^(1+1/n) = F (n+1) k^(1/n) / (2 E* n)
-    return (F * (n + 1) * k ** (1 / n) / (2 * p.modulus * n)) ** (n / (n + 1))
+    return (F * (n + 1) * k ** (1 / n) / (2 * p.E_star * n)) ** (n / (n + 1))
 
 
 @REG.register("bem")
@@ -233,18 +235,18 @@ def _solve_bem(p: AxisymmetricParams) -> Result:
     heights = -np.where(np.isfinite(fr), fr, 10.0 * d + float(np.max(fr[np.isfinite(fr)])))
     nit = 0
     if p.normal_force is not None:
-        res = solve_bem(heights, dx, p.modulus, p.normal_force / (L * L), periodic=False, stiffness=False)
+        res = solve_bem(heights, dx, p.E_star, p.normal_force / (L * L), periodic=False, stiffness=False)
         nit = res.nit
     else:
         # Displacement control by a secant search in log F - log d: the
         # continuum force is a power of d for these homogeneous profiles,
         # so two to four warm-started load-controlled solves suffice.
         expo = {"sphere": 1.5, "cone": 2.0, "flat": 1.0}.get(p.profile, (p.exponent + 1) / p.exponent)
-        logF = math.log(float(_mdr.normal_force(*_row(p, a), d, p.modulus)))
+        logF = math.log(float(_mdr.normal_force(*_row(p, a), d, p.E_star)))
         prev = None
         p0 = None
         for _ in range(12):
-            res = solve_bem(heights, dx, p.modulus, math.exp(logF) / (L * L), periodic=False, stiffness=False, tol=1e-12, p0=p0)
+            res = solve_bem(heights, dx, p.E_star, math.exp(logF) / (L * L), periodic=False, stiffness=False, tol=1e-12, p0=p0)
             p0, nit = res.p, nit + res.nit
             logd = math.log(res.approach)
             if abs(logd - math.log(d)) < 1e-10:
@@ -522,7 +524,7 @@ def rough_params_from_scene(scene) -> RoughParams:
         raise ParameterError("[roughness]", "a [roughness] section for a rough contact", "nothing")
     contact = getattr(scene, "contact", None)
     kw = dict(
-        modulus=scene.effective_modulus,
+        E_star=scene.effective_modulus,
         pixel_size=rough.pixel_size,
         pressures=tuple(scene.load.pressures),
         realizations=rough.realizations,
@@ -558,7 +560,7 @@ def params_from_scene(scene):
         raise ParameterError("[load].normal_force", f"a force > 0 N for a {geo.profile} contact", scene.load.normal_force)
     return AxisymmetricParams(
         profile=geo.profile,
-        modulus=scene.effective_modulus,
+        E_star=scene.effective_modulus,
         radius=geo.radius,
         half_angle_deg=geo.half_angle_deg,
         normal_force=scene.load.normal_force,
@@ -625,16 +627,16 @@ def stiffness_vs_pressure(scene_or_params, *, method: str | None = None, rng: np
         from .rough import rms_gradient
 
         tol = tolerance if tolerance is not None else float(getattr(contact, "tolerance", 0.3))
-        choice = choose_method(tol, reduced_pressures=reduced_pressures(params.pressures, params.modulus, rms_gradient(h, dx)))
+        choice = choose_method(tol, reduced_pressures=reduced_pressures(params.pressures, params.E_star, rms_gradient(h, dx)))
         method = choice["method"]
         if method == "bem":
             periodic = True  # the table's BEM errors are those of the periodic cell
-    res = solve_rough(h, dx, params.modulus, params.pressures, method=method, periodic=periodic, realizations=params.realizations, rng=ens_rng)
+    res = solve_rough(h, dx, params.E_star, params.pressures, method=method, periodic=periodic, realizations=params.realizations, rng=ens_rng)
     if choice is not None and method == "mdr" and res.warnings:
         from .rough import CLOSED_FRACTION_LIMIT
 
         warnings = list(res.warnings)
-        res = solve_rough(h, dx, params.modulus, params.pressures, method="bem", periodic=True)
+        res = solve_rough(h, dx, params.E_star, params.pressures, method="bem", periodic=True)
         res["warnings"] = warnings + [f"auto: MDR closed more than {CLOSED_FRACTION_LIMIT:.0%} of its lines; the periodic BEM was run instead"]
         choice = dict(choice, method="bem", why=choice["why"] + "; MDR lines closed at run time -> periodic BEM")
     if choice is not None:
