@@ -37,7 +37,7 @@ MIN_PIXELS_PER_PATCH = 20.0
 
 
 def patch_statistics(contact: np.ndarray) -> tuple[int, float]:
-    """Number of contact patches (periodic 4-connectivity) and their mean size in pixels."""
+    """Count the contact patches (periodic 4-connectivity) and their mean size in pixels."""
     from scipy import ndimage
 
     c = np.asarray(contact, dtype=bool)
@@ -63,8 +63,10 @@ def patch_statistics(contact: np.ndarray) -> tuple[int, float]:
     return len(roots), float(np.count_nonzero(c)) / len(roots)
 
 
-def interfacial_stiffness(heights, pixel_size: float, E_star: float, pressures: Sequence[float], *, tol: float = 1e-10) -> Result:
-    """Periodic-BEM interfacial stiffness per unit area ``-dp/d(mean gap)`` at each nominal pressure.
+def interfacial_stiffness(
+    heights, pixel_size: float, E_star: float, pressures: Sequence[float], *, tol: float = 1e-10
+) -> Result:
+    """Periodic-BEM interfacial stiffness per area ``-dp/d(mean gap)`` at each nominal pressure.
 
     Parameters
     ----------
@@ -101,9 +103,11 @@ def interfacial_stiffness(heights, pixel_size: float, E_star: float, pressures: 
     if P.size == 0:
         raise ParameterError("pressures", "at least one pressure", "an empty list")
     if np.any(P >= E):
-        raise ParameterError("pressures", f"pressures below the modulus ({E:g} Pa)", float(P[P >= E][0]))
+        bad = float(P[P >= E][0])
+        raise ParameterError("pressures", f"pressures below the modulus ({E:g} Pa)", bad)
     area = (h.shape[0] * dx) ** 2
-    out = {k: np.empty(P.size) for k in ("stiffness", "mean_gap", "area_fraction", "pixels_per_patch", "time_s")}
+    keys = ("stiffness", "mean_gap", "area_fraction", "pixels_per_patch", "time_s")
+    out = {k: np.empty(P.size) for k in keys}
     p0 = None
     for j in np.argsort(P):  # ascending loads warm-start from the previous pressure field
         t0 = time.perf_counter()
