@@ -41,7 +41,7 @@ def configure(parser) -> None:
     ap = sub.add_parser("approach", help="sphere under constant load through the film")
     ap.add_argument("--radius", type=float, required=True, help="R (m)")
     ap.add_argument("--viscosity", type=float, required=True, help="eta or K (Pa s^n)")
-    ap.add_argument("--load", type=float, required=True, help="constant load W (N)")
+    ap.add_argument("--normal-force", "--load", dest="load", type=float, required=True, help="constant load W (N); --load is the old spelling")
     ap.add_argument("--gap", type=float, required=True, help="initial gap h0 (m)")
     ap.add_argument("--duration", type=float, required=True, help="time (s)")
     ap.add_argument("--steps", type=int, default=100, help="time steps")
@@ -127,7 +127,7 @@ def _approach(args) -> int:
     p = dynamics.FilmParams(
         radius=args.radius,
         viscosity=args.viscosity,
-        load=args.load,
+        normal_force=args.load,
         gap0=args.gap,
         duration=args.duration,
         steps=args.steps,

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import BlowUpError, ParameterError
-from ...scene.fields import param, validate_dataclass
+from ...params import param, renamed, validate_dataclass
 from ..base import MethodRegistry, Result, timed
 
 __all__ = [
@@ -49,6 +49,7 @@ __all__ = [
 SCHEMES = MethodRegistry("film scheme")
 
 
+@renamed(load="normal_force")  # old name kept (docs/conventions.md)
 @dataclass(frozen=True)
 class FilmParams:
     """A sphere pressed onto a plane through a film under constant load (SI).
@@ -59,8 +60,8 @@ class FilmParams:
         R in m.
     viscosity : float
         eta in Pa s (K for a power-law fluid when ``consistency`` is None).
-    load : float
-        Constant load W in N.
+    normal_force : float
+        Constant load W in N (old name ``load``).
     gap0 : float
         Initial gap h0 in m.
     model : str
@@ -77,7 +78,7 @@ class FilmParams:
 
     radius: float = param(1e-3, unit="m", lo=0.0, lo_open=True, hi=1e3)
     viscosity: float = param(0.1, unit="Pa s", lo=0.0, lo_open=True, hi=1e9)
-    load: float = param(1.0, unit="N", lo=0.0, hi=1e12)
+    normal_force: float = param(1.0, unit="N", lo=0.0, hi=1e12)
     gap0: float = param(1e-5, unit="m", lo=0.0, lo_open=True, hi=1e3)
     model: str = param("damper", choices=("damper", "cox-brenner", "power-law"))
     power_law_index: float = param(1.0, lo=1.0 / 3.0, lo_open=True, hi=5.0)
@@ -162,17 +163,17 @@ def exact_gap(p: FilmParams, t):
     """Exact gap h(t) (m) under constant load for ``p.model`` (0 after a film collapse)."""
     phi, inv, _ = _primitive(p)
     y0 = float(phi(p.gap0))
-    W = p.load ** (1.0 / p.n)
+    W = p.normal_force ** (1.0 / p.n)
     return np.array([inv(y0 - W * float(tt)) for tt in np.atleast_1d(t)])
 
 
 def _log_gap(p: FilmParams, t: np.ndarray) -> np.ndarray:
     """ln h(t) without underflow for the damper (ln h = ln h0 - W t / alpha); else ln of the gap."""
     if p.model == "damper":
-        return math.log(p.gap0) - p.load * t / (6.0 * math.pi * p.viscosity * p.radius**2)
+        return math.log(p.gap0) - p.normal_force * t / (6.0 * math.pi * p.viscosity * p.radius**2)
     phi, inv, _ = _primitive(p)
     if hasattr(inv, "log"):  # Cox-Brenner: ln h without underflow
-        y0, W = float(phi(p.gap0)), p.load ** (1.0 / p.n)
+        y0, W = float(phi(p.gap0)), p.normal_force ** (1.0 / p.n)
         return np.array([inv.log(y0 - W * float(tt)) for tt in np.atleast_1d(t)])
     with np.errstate(divide="ignore"):
         return np.log(exact_gap(p, t))
@@ -184,7 +185,7 @@ def _log_scheme(p: FilmParams, t: np.ndarray) -> tuple[np.ndarray, int]:
     h = np.empty_like(t)
     h[0] = p.gap0
     y = float(phi(p.gap0))
-    W = p.load ** (1.0 / p.n)
+    W = p.normal_force ** (1.0 / p.n)
     for k in range(1, t.size):
         y -= W * (t[k] - t[k - 1])
         h[k] = inv(y) if h[k - 1] > 0 else 0.0
@@ -205,11 +206,11 @@ def _explicit(p: FilmParams, t: np.ndarray) -> tuple[np.ndarray, int]:
             h[k:] = hk
             break
         if p.model == "damper":
-            V = p.load * hk / (6.0 * math.pi * p.viscosity * p.radius**2)
+            V = p.normal_force * hk / (6.0 * math.pi * p.viscosity * p.radius**2)
         elif p.model == "cox-brenner":
-            V = p.load / float(cox_brenner_force(p.radius, p.viscosity, hk, 1.0))
+            V = p.normal_force / float(cox_brenner_force(p.radius, p.viscosity, hk, 1.0))
         else:
-            V = (p.load / (C * hk ** ((1.0 - 3.0 * p.n) / 2.0))) ** (1.0 / p.n)
+            V = (p.normal_force / (C * hk ** ((1.0 - 3.0 * p.n) / 2.0))) ** (1.0 / p.n)
         h[k] = hk - V * (t[k] - t[k - 1])
     return h, t.size - 1
 
@@ -268,6 +269,7 @@ def approach(params: FilmParams, *, scheme: str = "log", rng=None) -> Result:
 # ------------------------------------------------------------------ mixed lubrication
 
 
+@renamed(load="normal_force")  # old name kept (docs/conventions.md)
 @dataclass(frozen=True)
 class MixedParams:
     """Mixed lubrication of a rough apparent contact: MDR springs plus the nominal film (SI).
@@ -278,8 +280,8 @@ class MixedParams:
         eta in Pa s.
     E_star : float
         Effective modulus E* in Pa.
-    load : float
-        Constant load W in N on the apparent contact.
+    normal_force : float
+        Constant load W in N on the apparent contact (old name ``load``).
     gap0 : float
         Initial distance of the flat from the highest point in m.
     film_cutoff : float
@@ -307,7 +309,7 @@ class MixedParams:
 
     viscosity: float = param(0.1, unit="Pa s", lo=0.0, lo_open=True, hi=1e9)
     E_star: float = param(1e11, unit="Pa", lo=0.0, lo_open=True, hi=1e13)
-    load: float = param(1.0, unit="N", lo=0.0, hi=1e12)
+    normal_force: float = param(1.0, unit="N", lo=0.0, hi=1e12)
     gap0: float = param(1e-6, unit="m", lo=0.0, lo_open=True, hi=1.0)
     film_cutoff: float = param(1e-9, unit="m", lo=0.0, lo_open=True, hi=1e-3)
     duration: float = param(1e-2, unit="s", lo=0.0, lo_open=True, hi=1e12)
@@ -427,14 +429,14 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None, times=None) 
         return np.log(np.clip(gj - d, 0.0, None) + hc)
 
     def dry(dd):
-        return nf(x, g, dd, p.E_star) - p.load
+        return nf(x, g, dd, p.E_star) - p.normal_force
 
     hi = 1e-12
     while dry(hi) < 0:
         hi *= 2.0
         if hi > 1e3 * (float(g.max()) + p.gap0):
-            raise BlowUpError(f"load {p.load:g} N exceeds what the profile can carry")
-    d_dry = brentq(dry, -1e-300 if dry(0.0) < 0 else -p.gap0, hi, xtol=1e-18, rtol=1e-14) if p.load > 0 else 0.0
+            raise BlowUpError(f"load {p.normal_force:g} N exceeds what the profile can carry")
+    d_dry = brentq(dry, -1e-300 if dry(0.0) < 0 else -p.gap0, hi, xtol=1e-18, rtol=1e-14) if p.normal_force > 0 else 0.0
     d0 = -p.gap0
     # the film seals where half the rigid gap is closed (Bruggeman; the median of g)
     d_seal = float(np.median(g)) if p.flow_factor == "bruggeman" and p.nominal_film else math.inf
@@ -468,7 +470,7 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None, times=None) 
 
             def resid(dd):
                 film = phi_nom(dd) - ph0 + float(np.sum(alpha * (ls0 - log_s(dd))))
-                return film / dt + nf(x, g, dd, p.E_star) - p.load
+                return film / dt + nf(x, g, dd, p.E_star) - p.normal_force
 
             lo = d[k - 1]
             if lo >= d_top or resid(lo) >= 0:  # at/beyond equilibrium (or sealed): stay
@@ -479,8 +481,8 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None, times=None) 
                 d[k] = brentq(resid, lo, d_top, xtol=1e-18, rtol=1e-14)
             Fs[k] = nf(x, g, d[k], p.E_star)
     Fs[0] = nf(x, g, d[0], p.E_star)
-    Ff = p.load - Fs
-    Ff[0] = p.load
+    Ff = p.normal_force - Fs
+    Ff[0] = p.normal_force
     c_nom = on * np.exp(c_spline(np.log(gbar - d)))
     c_sum = np.array([float(np.sum(alpha / (np.clip(gj - dd, 0.0, None) + hc))) for dd in d])
     film = g[None, :] - d[:, None]
