@@ -35,7 +35,7 @@ def configure(parser) -> None:
     osc.add_argument("--json", action="store_true", help="print JSON")
     sq = sub.add_parser("squeeze", help="normal approach of the body through the squeeze film ([lubricant])")
     sq.add_argument("scene", nargs="?", help="TOML scene file with a [lubricant] section (default: the embedded scene)")
-    sq.add_argument("--load", type=float, help="normal load in N (default [load].normal_force)")
+    sq.add_argument("--normal-force", "--load", dest="load", type=float, help="normal load in N (default [load].normal_force); --load is the old spelling")
     sq.add_argument("--gap", type=float, help="initial film thickness in m (default [lubricant].film_thickness)")
     sq.add_argument("--duration", type=float, help="simulated time in s (default [kinematics].duration)")
     sq.add_argument("--mass", type=float, help="body mass in kg, 0 = overdamped (default [kinematics].mass)")
@@ -139,12 +139,13 @@ def _oscillate(args, scene) -> dict:
 def _squeeze(args, scene) -> dict:
     from ..models.macro import contact_from_scene, squeeze_approach, squeeze_params_from_scene
 
-    over = {k: v for k, v in (("load", args.load), ("gap", args.gap), ("duration", args.duration), ("mass", args.mass))
+    over = {k: v for k, v in (("normal_force", args.load), ("gap", args.gap), ("duration", args.duration), ("mass", args.mass))
             if v is not None}
     p = squeeze_params_from_scene(scene, contact_gap=args.contact_gap, **over)
     res = squeeze_approach(p, contact_from_scene(scene, rng=_profile_rng(scene)) if p.contact_gap > 0 else None)
     return {
-        "load_N": p.load,
+        "load_N": p.normal_force,
+        "normal_force_N": p.normal_force,
         "initial_gap_m": p.gap,
         "final_gap_m": float(res.gap[-1]),
         "final_film_force_N": float(res.film_force[-1]),

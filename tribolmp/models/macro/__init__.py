@@ -179,7 +179,7 @@ def stick_slip_from_scene(scene, mu: float | None = None, contact_law: str = "ri
     params = params_from_scene(scene, **overrides)
     if contact_gap is None:
         return stick_slip(params, law, method=method, contact_stiffness=kc)
-    sq = squeeze_approach(squeeze_params_from_scene(scene, load=params.normal_force, duration=params.duration,
+    sq = squeeze_approach(squeeze_params_from_scene(scene, normal_force=params.normal_force, duration=params.duration,
                                                     mass=0.0, contact_gap=contact_gap),
                           contact_from_scene(scene, mu=law.mu_s, rng=rng), n_out=2001)
     res = stick_slip(params, law, method="rk45" if method in ("auto", "analytic") else method, contact_stiffness=kc,

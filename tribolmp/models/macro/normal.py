@@ -25,20 +25,21 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ConvergenceError
-from ...scene.fields import param, validate_dataclass
+from ...params import param, renamed, validate_dataclass
 from ..base import Result, timed
 
 __all__ = ["SqueezeParams", "squeeze_approach", "squeeze_params_from_scene"]
 
 
+@renamed(load="normal_force")  # old name kept (docs/conventions.md)
 @dataclass(frozen=True)
 class SqueezeParams:
     """Normal approach of the body through a squeeze film (SI).
 
     Attributes
     ----------
-    load : float
-        Normal load W pressing the body down (N).
+    normal_force : float
+        Normal load W pressing the body down (N) (old name ``load``).
     radius : float
         Curvature radius R of the body's contact (m).
     viscosity : float
@@ -57,7 +58,7 @@ class SqueezeParams:
         Relative tolerance of the integrator.
     """
 
-    load: float = param(10.0, unit="N", lo=0.0, hi=1e9)
+    normal_force: float = param(10.0, unit="N", lo=0.0, hi=1e9)
     radius: float = param(5e-3, unit="m", lo=0.0, lo_open=True, hi=10.0)
     viscosity: float = param(0.1, unit="Pa s", lo=0.0, lo_open=True, hi=1e6)
     gap: float = param(1e-6, unit="m", lo=0.0, lo_open=True, hi=1.0)
@@ -78,8 +79,10 @@ def squeeze_params_from_scene(scene, **overrides) -> SqueezeParams:
 
     if scene.lubricant is None:
         raise ParameterError("[lubricant]", "a [lubricant] section for the squeeze damper", "nothing")
-    kw = {"load": scene.load.normal_force, "radius": scene.geometry.radius, "viscosity": scene.lubricant.viscosity,
+    kw = {"normal_force": scene.load.normal_force, "radius": scene.geometry.radius, "viscosity": scene.lubricant.viscosity,
           "gap": scene.lubricant.film_thickness, "duration": scene.kinematics.duration, "mass": scene.kinematics.mass}
+    if "load" in overrides:  # the old name of normal_force
+        overrides["normal_force"] = overrides.pop("load")
     kw.update(overrides)
     return SqueezeParams(**kw)
 
@@ -108,7 +111,7 @@ def squeeze_approach(params: SqueezeParams, contact=None, *, n_out: int = 201) -
     from ..lubrication import squeeze_damper_force  # lazy: only lubricated bodies need it
 
     p = params
-    h0, W, m, hc = p.gap, p.load, p.mass, p.contact_gap
+    h0, W, m, hc = p.gap, p.normal_force, p.mass, p.contact_gap
     if hc > 0 and contact is None:
         from ...errors import ParameterError
 
