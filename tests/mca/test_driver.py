@@ -38,7 +38,8 @@ def smoke_run(tmp_path_factory, lammps_available):
     keep = driver.compute_rates_if_available
     driver.compute_rates_if_available = lambda out: None
     try:
-        res = run_mca(preset_params("smoke"), out, seed=11)
+        # calibrated on the plastic law (the mca law has its own tests, tests/mca/test_law_*)
+        res = run_mca(preset_params("smoke", bond_style="bpm/spring/plastic"), out, seed=11)
     finally:
         driver.compute_rates_if_available = keep
     return out, res
@@ -173,7 +174,7 @@ def test_resume_reaches_the_uninterrupted_result(tmp_path, monkeypatch, lammps_a
     "changes, field",
     [
         (dict(dt_factor=0.9), "dt_factor"),
-        (dict(pressure=600e6), "pressure"),
+        (dict(pressure=900e6), "pressure"),  # above the flow stress of every law (mca: 840 MPa)
         (dict(automaton_diameter=0.3e-9), "automaton_diameter"),
         (dict(automaton_diameter=60e-9), "automaton_diameter"),
         (dict(sliding_velocity=-1.0), "sliding_velocity"),
@@ -200,7 +201,10 @@ def test_blowups_name_step_and_cause_and_keep_restart(
     overrides, cause, tmp_path, monkeypatch, lammps_available
 ):
     _no_rates(monkeypatch)
-    params = preset_params("smoke", duration=0.3e-9, restart_interval=0.01e-9)
+    # the failure modes named are those of the bonded (bpm) laws
+    params = preset_params(
+        "smoke", duration=0.3e-9, restart_interval=0.01e-9, bond_style="bpm/spring/plastic"
+    )
     with pytest.raises(BlowUpError) as err:
         run_mca(params, tmp_path, seed=1, overrides=overrides)
     msg = str(err.value)

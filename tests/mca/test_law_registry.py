@@ -12,9 +12,12 @@ from tribolmp.lammps.laws import DEFAULT_LAW, get_law, law_names
 from tribolmp.lammps.mapping import MaterialSpec
 
 
-def test_mca_is_registered():
+def test_mca_is_registered_and_the_default():
     assert "mca" in law_names()
-    assert DEFAULT_LAW in law_names()
+    assert DEFAULT_LAW == "mca"
+    from tribolmp.lammps.mca import preset_params
+
+    assert preset_params("smoke").bond_style == "mca"
     law = get_law("mca")
     assert law.keyword == "mca" and law.setup is not None and not law.coordination_cap
     from tribolmp.lammps.decks import laws_dir

@@ -76,7 +76,7 @@ def test_a_new_law_is_one_entry_plus_its_fragment(tmp_path, monkeypatch, lammps_
     monkeypatch.setattr(driver, "compute_rates_if_available", lambda out: None)
     params = preset_params("smoke", duration=0.1e-9, ramp_time=0.05e-9, bond_style="toy")
     run_mca(params, tmp_path / "toy", seed=3)
-    ref = preset_params("smoke", duration=0.1e-9, ramp_time=0.05e-9)
+    ref = preset_params("smoke", duration=0.1e-9, ramp_time=0.05e-9, bond_style="bpm/spring/plastic")
     run_mca(ref, tmp_path / "ref", seed=3)
     a = np.loadtxt(tmp_path / "toy" / "friction.csv", delimiter=",", skiprows=1)
     b = np.loadtxt(tmp_path / "ref" / "friction.csv", delimiter=",", skiprows=1)

@@ -206,9 +206,8 @@ BOND_LAWS: Mapping[str, BondLaw] = MappingProxyType(
     }
 )
 
-#: The law used when none is named (the scene default; ``mca`` once the driver tests are
-#: recalibrated for it, see CONTRACTS.md C2/C7).
-DEFAULT_LAW = "bpm/spring/plastic"
+#: The law used when none is named (the scene default).
+DEFAULT_LAW = "mca"
 
 
 def law_names() -> tuple[str, ...]:

@@ -193,7 +193,7 @@ class Nanoscale(Section):
     _name = "nanoscale"
     automaton_diameter: float = param(2.5e-9, unit="m", lo=0.5e-9, hi=50e-9, doc="Automaton size d (0.5-50 nm).")
     dim: int = param(2, choices=(2, 3), doc="Spatial dimension of the MCA run.")
-    bond_style: str = param("bpm/spring/plastic", choices=("bpm/spring/plastic", "bpm/rotational", "mca"), doc="MCA interaction law (tribolmp.lammps.laws).")
+    bond_style: str = param("mca", choices=("bpm/spring/plastic", "bpm/rotational", "mca"), doc="MCA interaction law (tribolmp.lammps.laws).")
     sliding_velocity: float = param(5.0, unit="m/s", lo=0.0, lo_open=True, hi=100.0, doc="Velocity of the rigid top layer.")
     pressure: float = param(150e6, unit="Pa", lo=0.0, lo_open=True, hi=2e9, doc="Normal pressure on the top layer.")
     duration: float = param(2e-9, unit="s", lo=0.0, lo_open=True, hi=1e-5, doc="Simulated time.")
