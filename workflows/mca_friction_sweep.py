@@ -258,6 +258,48 @@ def roughness_figure(run_dirs: list[Path], path: Path) -> dict[str, dict]:
     return out
 
 
+def eq23_figure(run_dirs: list[Path], path: Path) -> None:
+    """Plot gamma(k) and S gamma against k^2 per mode with the Eq. 23 fits, from each run's rates.json."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.4))
+    for run in run_dirs:
+        rj = run / "rates.json"
+        if not rj.exists():
+            continue
+        eq = json.loads(rj.read_text()).get("eq23")
+        if not eq:
+            continue
+        m = eq["modes"]
+        k2 = np.asarray(m["k_per_m"]) ** 2
+        used = np.asarray(m["used"], dtype=bool)
+        for ax, (y, e, c0, c1) in zip(axes, (("gamma_per_s", "gamma_err_per_s", "mu_per_s", "d0_m2_s"),
+                                             ("s_gamma_m3_s", "s_gamma_err_m3_s", "dz", "dx_l2"))):
+            yy = np.array([np.nan if v is None else v for v in m[y]], dtype=float)
+            ee = np.array([np.nan if v is None else v for v in m[e]], dtype=float)
+            line = ax.errorbar(k2[used], yy[used], yerr=ee[used], fmt="o", ms=3, capsize=2,
+                               label=f"{run.parent.name}/{run.name}")
+            ax.plot(k2[~used], yy[~used], "x", color=line[0].get_color(), ms=4)
+            a, b = eq["raw"].get(c0), eq["raw"].get(c1)
+            if a is not None and b is not None and used.any():
+                kk = np.linspace(0, k2[used].max(), 50)
+                ax.plot(kk, a + b * kk, "-", lw=0.8, color=line[0].get_color())
+    axes[0].set_ylabel("gamma (1/s)")
+    axes[1].set_ylabel("S gamma (m^3/s)")
+    for ax in axes:
+        ax.set_xlabel("k^2 (1/m^2)")
+        ax.legend(fontsize=6)
+    axes[0].set_title("relaxation rate per mode (o used, x not); line: mu + D0 k^2", fontsize=8)
+    axes[1].set_title("S gamma per mode; line: Dz + Dx l^2 k^2 (raw fit)", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
 def _cell(row: dict, key: str, scale, fmt: str) -> str:
     v = row.get(key)
     if v is None:
