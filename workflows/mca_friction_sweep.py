@@ -198,20 +198,22 @@ def campaign_figures(campaign: Path, out_dir: Path, prefix: str = "mca_study") -
     for key, err, label, scale, name in (("mu", "mu_err", "mu", 1.0, "mu"),
                                          ("layer_depth_m", "layer_depth_err_m", "layer depth (nm)", 1e9, "layer")):
         fig, ax = plt.subplots(figsize=(5, 3.4))
-        for v in sorted({float(r["sliding_velocity_m_s"]) for r in rows}):
-            sel = sorted((r for r in rows if float(r["sliding_velocity_m_s"]) == v and r[key] not in ("", None)),
-                         key=lambda r: float(r["pressure_Pa"]))
-            if not sel:
-                continue
-            ax.errorbar([float(r["pressure_Pa"]) * 1e-6 for r in sel], [float(r[key]) * scale for r in sel],
-                        yerr=[float(r[err] or 0) * scale for r in sel], fmt="o", capsize=3, label=f"V = {v:g} m/s",
-                        mfc="none" if key == "mu" else None)
+        laws = sorted({r.get("law") or "?" for r in rows})
+        markers = dict(zip(laws, "os^D"))
+        for law in laws:
+            for v in sorted({float(r["sliding_velocity_m_s"]) for r in rows}):
+                sel = sorted((r for r in rows if float(r["sliding_velocity_m_s"]) == v and r[key] not in ("", None)
+                              and (r.get("law") or "?") == law), key=lambda r: float(r["pressure_Pa"]))
+                if not sel:
+                    continue
+                ax.errorbar([float(r["pressure_Pa"]) * 1e-6 for r in sel], [float(r[key]) * scale for r in sel],
+                            yerr=[float(r[err] or 0) * scale for r in sel], fmt=markers[law], capsize=3,
+                            label=f"{law}, V = {v:g} m/s", mfc="none" if law != laws[-1] else None)
         ax.set_xscale("symlog", linthresh=1.0)
         ax.set_xlabel("P (MPa)")
         ax.set_ylabel(label)
-        laws = sorted({r.get("law") or "?" for r in rows})
-        ax.set_title(f"{label} (law {', '.join(laws)}; one marker per run)", fontsize=8)
-        ax.legend(fontsize=7)
+        ax.set_title(f"{label} (one marker per run; seeds at 150 and 382 MPa)", fontsize=8)
+        ax.legend(fontsize=6)
         fig.tight_layout()
         path = out_dir / f"{prefix}_{name}.png"
         fig.savefig(path, dpi=90)
