@@ -68,19 +68,25 @@ CAMPAIGN_COLUMNS = (
 def localized(rates: dict, within_m: float) -> bool | None:
     """Slip and mixing stay near the initial interface through the second half of the analysed window.
 
-    True when, in every persistence window of the second half, the layer centre is within
-    ``within_m`` of the initial interface and the x-averaged mixed width is below ``2 within_m``.
+    True when, in every persistence window of the second half, the sheared layer lies within
+    ``within_m`` of the initial interface (|layer centre offset| + half its x-averaged depth) and the
+    x-averaged mixed width is below ``2 within_m``.
     """
     lp = rates.get("layer_persistence") or {}
-    off = [v for v in (lp.get("layer_offset_m") or [])]
-    mix = [v for v in (lp.get("mixed_width_xavg_m") or [])]
+    off = list(lp.get("layer_offset_m") or [])
+    dep = list(lp.get("layer_depth_xavg_m") or lp.get("layer_depth_m") or [])
+    mix = list(lp.get("mixed_width_xavg_m") or [])
     if not off:
         return None
-    half = off[len(off) // 2:]
-    mhalf = mix[len(mix) // 2:] if mix else []
-    if any(v is None for v in half):
-        return False
-    return all(abs(v) <= within_m for v in half) and all(m is not None and m <= 2 * within_m for m in mhalf)
+    n = len(off)
+    half = range(n // 2, n)
+    for i in half:
+        o = off[i]
+        d = dep[i] if i < len(dep) else None
+        m = mix[i] if i < len(mix) else None
+        if o is None or d is None or abs(o) + 0.5 * d > within_m or (m is not None and m > 2 * within_m):
+            return False
+    return True
 
 
 def campaign_row(row: dict, rates: dict, meta: dict, params) -> dict:
@@ -127,18 +133,19 @@ def append_campaign(path: Path, new: dict) -> None:
     tmp.replace(path)
 
 
-def nanoscale_table(campaign: Path, out: Path, *, description: str) -> dict:
+def nanoscale_table(campaign: Path, out: Path, *, description: str, law: str | None = None) -> dict:
     """Write the table the chain interpolates: mu and Eq. 23 coefficients per (P, V), seeds combined.
 
     Per (P, V): mu is the mean over seeds; its error the larger of the combined standard errors
     sqrt(sum err^2)/n and the seed scatter std/sqrt(n) (when n > 1).  An Eq. 23 coefficient is given
-    only if valid in every seed (the same combination), else null with ``<c>_valid: false``.
+    only if valid in every seed (the same combination), else null with ``<c>_valid: false``.  With
+    ``law``, only that law's rows (a table never mixes laws).
     """
     import datetime as dt
     import math
 
     with campaign.open() as fh:
-        rows = list(csv.DictReader(fh))
+        rows = [r for r in csv.DictReader(fh) if law is None or r.get("law") == law]
     groups: dict[tuple[float, float], list[dict]] = {}
     for r in rows:
         if r.get("mu") in ("", None):
@@ -246,9 +253,10 @@ def roughness_figure(run_dirs: list[Path], path: Path) -> dict[str, dict]:
         h = prof["h"] - prof["h"].mean(axis=1, keepdims=True)
         rms = h.std(axis=1)
         t = prof["t"]
-        ax.plot(t * 1e9, rms * 1e9, lw=0.8, label=run.name)
+        label = f"{run.parent.name}/{run.name}"
+        ax.plot(t * 1e9, rms * 1e9, lw=0.8, label=label)
         i1 = int(np.searchsorted(t, t[0] + 1e-9))
-        out[run.name] = {"rms0_m": float(rms[0]), "rms_1ns_m": float(rms[min(i1, rms.size - 1)]),
+        out[label] = {"rms0_m": float(rms[0]), "rms_1ns_m": float(rms[min(i1, rms.size - 1)]),
                          "rms_end_m": float(rms[-1]), "rms_last_quarter_m": float(rms[3 * rms.size // 4:].mean())}
     ax.set_xlabel("t (ns)")
     ax.set_ylabel("rms of h(x) (nm)")
@@ -428,7 +436,8 @@ def main(argv=None) -> int:
               f"[{row['status_text'][:80]}]", flush=True)
     print(f"wrote {csv_path} and {md_path} in {time.perf_counter() - t_all:.0f} s")
     if args.table and campaign is not None and campaign.exists():
-        nanoscale_table(campaign, Path(args.table), description=args.description)
+        nanoscale_table(campaign, Path(args.table), description=args.description,
+                        law=overrides.get("bond_style") or default_law)
         print(f"wrote {args.table}")
     if args.figures and campaign is not None and campaign.exists():
         for path in campaign_figures(campaign, Path(args.figures)):
