@@ -173,17 +173,26 @@ class Topography(Stage):
 
     def preflight(self, scene, decision: Decision) -> list[str]:
         """Check the Eq. 23 grid against this machine's memory; note the evolution's cost."""
+        if decision.options.get("running_in"):
+            # Running-in evolves the part's own [roughness] map (2D), with a contact solve per checkpoint.
+            n, dim, field = scene.roughness.grid_points, 2, "[roughness].grid_points"
+            what = "the running-in surface (Eq. 23 + contact per checkpoint)"
+            note = f"running-in of the {n}^2 [roughness] map, {decision.options.get('contact_method')} contact"
+            return self._memory(scene, n, dim, field, what) or [note]
+        t = scene.topography
+        self._memory(scene, t.grid_points, t.dim, "[topography].grid_points", f"a {t.dim}D Eq. 23 grid")
+        # ~90 ns per point-step measured from 2^10 to 2^20 points (same benchmark).
+        seconds = 90e-9 * float(t.grid_points) ** t.dim * t.steps
+        return [f"Eq. 23 on {t.grid_points}^{t.dim} points x {t.steps} steps: ~{seconds:.2g} s"] if seconds > 10 else []
+
+    @staticmethod
+    def _memory(scene, n: int, dim: int, field: str, what: str) -> list[str]:
         from ...resources import check_memory
 
-        t = scene.topography
-        points = float(t.grid_points) ** t.dim
         # The exact scheme keeps ~5 grid arrays of float64 (benchmarks/topography_speed_vs_error.py:
         # 5.0 grid arrays at 1024^2), plus the saved map and its PSD.
-        check_memory(7 * 8 * points, "[topography].grid_points", t.grid_points, f"a {t.dim}D Eq. 23 grid",
-                     scene.source)
-        # ~90 ns per point-step measured from 2^10 to 2^20 points (same benchmark).
-        seconds = 90e-9 * points * t.steps
-        return [f"Eq. 23 on {t.grid_points}^{t.dim} points x {t.steps} steps: ~{seconds:.2g} s"] if seconds > 10 else []
+        check_memory(7 * 8 * float(n) ** dim, field, n, what, scene.source)
+        return []
 
     def run(self, ctx: StageContext) -> StageOutput:
         """Eq. 23 with the upstream rates -> final height map (``surface.npy`` + sidecar JSON) and its PSD."""
