@@ -51,8 +51,8 @@ from typing import Any
 import numpy as np
 
 from ...errors import ParameterError
+from ...params import param, renamed, validate_dataclass
 from ...progress import call_progress
-from ...scene.fields import param, validate_dataclass
 from ..base import MethodRegistry, Result
 from . import spectra
 
@@ -72,6 +72,7 @@ __all__ = [
 MAX_POINTS = 1 << 26
 
 
+@renamed(n="grid_points", dx="pixel_size")  # old names kept (docs/conventions.md)
 @dataclass(frozen=True)
 class TopographyParams:
     """Parameters of Eq. 23 on a periodic grid (all SI).
@@ -80,9 +81,9 @@ class TopographyParams:
     ----------
     dim : {1, 2}
         Profile (1) or surface (2).
-    n : int
+    grid_points : int
         Grid points per side, even, >= 4.
-    dx : float
+    pixel_size : float
         Grid spacing (m).
     d0 : float
         Surface diffusion coefficient D0 (m^2/s), >= 0.
@@ -107,8 +108,8 @@ class TopographyParams:
     """
 
     dim: int = param(1, choices=(1, 2), doc="1D profile or 2D surface.")
-    n: int = param(1024, lo=4, hi=1 << 26, doc="Grid points per side (even).")
-    dx: float = param(10e-9, unit="m", lo=0.0, lo_open=True, doc="Grid spacing.")
+    grid_points: int = param(1024, lo=4, hi=1 << 26, doc="Grid points per side (even); old name n.")
+    pixel_size: float = param(10e-9, unit="m", lo=0.0, lo_open=True, doc="Grid spacing; old name dx.")
     d0: float = param(1e-12, unit="m^2/s", lo=0.0, doc="Surface diffusion D0.")
     dx_noise: float = param(2.5e-20, unit="m^(2+dim)/s", lo=0.0, doc="Flux-noise intensity Dx.")
     dz: float = param(5.6e-20, unit="m^(2+dim)/s", lo=0.0, doc="Transfer-noise intensity Dz.")
@@ -122,16 +123,16 @@ class TopographyParams:
 
     def __post_init__(self) -> None:
         validate_dataclass(self)
-        if self.n % 2:
-            raise ParameterError("n", "an even number of grid points >= 4", self.n)
-        if self.n**self.dim > MAX_POINTS:
-            raise ParameterError("n", f"at most {MAX_POINTS} grid points in total (n**dim)", self.n)
+        if self.grid_points % 2:
+            raise ParameterError("grid_points", "an even number of grid points >= 4", self.grid_points)
+        if self.grid_points**self.dim > MAX_POINTS:
+            raise ParameterError("grid_points", f"at most {MAX_POINTS} grid points in total (grid_points**dim)", self.grid_points)
 
     # ---- derived quantities
     @property
     def length(self) -> float:
         """Side length L = n dx (m)."""
-        return self.n * self.dx
+        return self.grid_points * self.pixel_size
 
     @property
     def duration(self) -> float:
@@ -141,7 +142,7 @@ class TopographyParams:
     @property
     def shape(self) -> tuple[int, ...]:
         """Real-space grid shape."""
-        return (self.n,) * self.dim
+        return (self.grid_points,) * self.dim
 
     def theory_kwargs(self) -> dict[str, float]:
         """Keyword arguments of the :mod:`.spectra` theory functions."""
@@ -157,15 +158,15 @@ class TopographyParams:
 
 def euler_dt_limit(p: TopographyParams) -> float:
     """Explicit stability limit 2 / (mu + 4 dim D0 / dx^2) (s) of the Euler scheme."""
-    rate = p.mu + 4.0 * p.dim * p.d0 / p.dx**2
+    rate = p.mu + 4.0 * p.dim * p.d0 / p.pixel_size**2
     return math.inf if rate == 0 else 2.0 / rate
 
 
 def wavevectors(p: TopographyParams) -> list[np.ndarray]:
     """Wavevector components (1/m) on the real-FFT grid, broadcastable to its shape."""
     if p.dim == 1:
-        return [2 * np.pi * np.fft.rfftfreq(p.n, p.dx)]
-    return [2 * np.pi * np.fft.fftfreq(p.n, p.dx)[:, None], 2 * np.pi * np.fft.rfftfreq(p.n, p.dx)[None, :]]
+        return [2 * np.pi * np.fft.rfftfreq(p.grid_points, p.pixel_size)]
+    return [2 * np.pi * np.fft.fftfreq(p.grid_points, p.pixel_size)[:, None], 2 * np.pi * np.fft.rfftfreq(p.grid_points, p.pixel_size)[None, :]]
 
 
 def _modes(p: TopographyParams, lattice: bool):
@@ -173,14 +174,14 @@ def _modes(p: TopographyParams, lattice: bool):
     kv = wavevectors(p)
     kmag = np.sqrt(sum(k**2 for k in kv))
     if lattice:
-        k2 = sum(spectra.lattice_k2(k, p.dx) for k in kv)
+        k2 = sum(spectra.lattice_k2(k, p.pixel_size) for k in kv)
     else:
         k2 = kmag**2
     return np.broadcast_to(kmag, _spec_shape(p)), np.broadcast_to(k2, _spec_shape(p))
 
 
 def _spec_shape(p: TopographyParams) -> tuple[int, ...]:
-    return (p.n,) * (p.dim - 1) + (p.n // 2 + 1,)
+    return (p.grid_points,) * (p.dim - 1) + (p.grid_points // 2 + 1,)
 
 
 def expected_periodogram(p: TopographyParams, t: float, *, lattice: bool, s0=None) -> np.ndarray:
@@ -195,8 +196,8 @@ def expected_periodogram(p: TopographyParams, t: float, *, lattice: bool, s0=Non
 def _psd_summary(p: TopographyParams, s_grid: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Positive-k PSD from a grid quantity: 1D as is, 2D radially averaged."""
     if p.dim == 1:
-        return 2 * np.pi * np.fft.rfftfreq(p.n, p.dx)[1:], s_grid[..., 1:]
-    k, avg, _ = spectra.radial_average(s_grid, p.n, p.dx)
+        return 2 * np.pi * np.fft.rfftfreq(p.grid_points, p.pixel_size)[1:], s_grid[..., 1:]
+    k, avg, _ = spectra.radial_average(s_grid, p.grid_points, p.pixel_size)
     return k, avg
 
 
@@ -224,10 +225,10 @@ def mode_ratios(p: TopographyParams, h, expected: np.ndarray) -> np.ndarray:
     expected : ndarray
         Expected periodogram on the real-FFT grid (e.g. :func:`expected_periodogram`).
     """
-    s = spectra.periodogram(np.asarray(h).reshape((-1,) + p.shape), p.dx, p.dim)
+    s = spectra.periodogram(np.asarray(h).reshape((-1,) + p.shape), p.pixel_size, p.dim)
     kmag = np.broadcast_to(np.sqrt(sum(k**2 for k in wavevectors(p))), _spec_shape(p))
     keep = np.zeros(_spec_shape(p), dtype=bool)
-    keep[..., 1 : p.n // 2] = True
+    keep[..., 1 : p.grid_points // 2] = True
     keep &= expected > 0
     order = np.argsort(kmag[keep], kind="stable")
     return (s[:, keep] / expected[keep])[:, order]
@@ -263,7 +264,7 @@ class _ExactOU:
         kmag, k2 = _modes(p, self.lattice)
         gamma = p.mu + p.d0 * k2
         q = 2.0 * (p.dz + p.dx_noise * p.l**2 * k2) * spectra.noise_spectrum(kmag, p.correlation_length)
-        q *= p.n**p.dim / p.dx**p.dim
+        q *= p.grid_points**p.dim / p.pixel_size**p.dim
         return gamma, q
 
     def _amplitude(self, t: float, gamma, q) -> np.ndarray:
@@ -278,14 +279,14 @@ class _ExactOU:
         return amp.astype(self.real_dtype)
 
     def _self_conjugate(self):
-        n2 = self.p.n // 2
+        n2 = self.p.grid_points // 2
         if self.p.dim == 1:
             return [(0,), (n2,)]
         return [(0, 0), (0, n2), (n2, 0), (n2, n2)]
 
     def _hermitize(self, x: np.ndarray) -> None:
         """Impose the real-FFT symmetry on complex noise ``x`` (R, *rfft_shape) in place."""
-        n2 = self.p.n // 2
+        n2 = self.p.grid_points // 2
         if self.p.dim == 1:
             x.imag[:, 0] = 0.0
             x.imag[:, n2] = 0.0
@@ -321,7 +322,7 @@ class _ExactOU:
 
     def periodogram(self) -> np.ndarray:
         hk = self.hk
-        return (self.p.dx**self.p.dim / self.p.n**self.p.dim) * (hk.real**2 + hk.imag**2)
+        return (self.p.pixel_size**self.p.dim / self.p.grid_points**self.p.dim) * (hk.real**2 + hk.imag**2)
 
 
 class _EulerFD:
@@ -339,9 +340,9 @@ class _EulerFD:
         self.rng = rng
         self.h = np.zeros((replicas,) + p.shape)
         self.axes = tuple(range(-p.dim, 0))
-        vol = p.dx**p.dim
+        vol = p.pixel_size**p.dim
         self.sz = math.sqrt(2.0 * p.dz * p.dt / vol)
-        self.sx = p.l * math.sqrt(2.0 * p.dx_noise * p.dt / vol) / p.dx
+        self.sx = p.l * math.sqrt(2.0 * p.dx_noise * p.dt / vol) / p.pixel_size
         self.filt = None
         if p.correlation_length > 0:
             kmag, _ = _modes(p, lattice=False)
@@ -357,7 +358,7 @@ class _EulerFD:
         out = -2.0 * self.p.dim * h
         for ax in self.axes:
             out += np.roll(h, 1, axis=ax) + np.roll(h, -1, axis=ax)
-        return out / self.p.dx**2
+        return out / self.p.pixel_size**2
 
     def step(self) -> None:
         p, h = self.p, self.h
@@ -374,7 +375,7 @@ class _EulerFD:
         return self.h
 
     def periodogram(self) -> np.ndarray:
-        return spectra.periodogram(self.h, self.p.dx, self.p.dim)
+        return spectra.periodogram(self.h, self.p.pixel_size, self.p.dim)
 
 
 SCHEMES.register("exact")(_ExactOU)
@@ -404,8 +405,8 @@ def _rfft(p, h):
 
 def _irfft(p, hk):
     if p.dim == 1:
-        return np.fft.irfft(hk, n=p.n, axis=-1)
-    return np.fft.irfft2(hk, s=(p.n, p.n), axes=(-2, -1))
+        return np.fft.irfft(hk, n=p.grid_points, axis=-1)
+    return np.fft.irfft2(hk, s=(p.grid_points, p.grid_points), axes=(-2, -1))
 
 
 def _check_h0(p: TopographyParams, h0) -> np.ndarray:
@@ -496,7 +497,7 @@ def evolve(
     s0 = None
     stationary_start = isinstance(h0, str)
     if h0_arr is not None:
-        s0 = spectra.periodogram(h0_arr, p.dx, p.dim)
+        s0 = spectra.periodogram(h0_arr, p.pixel_size, p.dim)
         s0 = s0.reshape(-1, *s0.shape[-p.dim :]).mean(axis=0)
 
     def theory_grid(t):
@@ -539,9 +540,9 @@ def evolve(
         rq=final["rq"],
         rq_theory=final["rq_theory"],
         mean=float(h.mean()),
-        roughness=spectra.roughness(h[0], p.dx, p.dim),
+        roughness=spectra.roughness(h[0], p.pixel_size, p.dim),
         t_s=p.duration,
-        dx=p.dx,
+        dx=p.pixel_size,
         dim=p.dim,
         replicas=replicas,
         operator="lattice" if lattice else "spectral",
@@ -554,8 +555,8 @@ def evolve(
     k1, k2 = p.crossovers()
     res.k1, res.k2 = k1, k2
     if p.dim == 2:
-        res.line_k, res.line_psd = spectra.line_scan_psd_theory(final["s_grid"], p.n, p.dx)
-        _, res.line_psd_theory = spectra.line_scan_psd_theory(final["th_grid"], p.n, p.dx)
+        res.line_k, res.line_psd = spectra.line_scan_psd_theory(final["s_grid"], p.grid_points, p.pixel_size)
+        _, res.line_psd_theory = spectra.line_scan_psd_theory(final["th_grid"], p.grid_points, p.pixel_size)
     res.units = {"h": "m", "k": "1/m", "psd": f"m^{p.dim + 2}", "psd_theory": f"m^{p.dim + 2}",
                  "psd_stationary": f"m^{p.dim + 2}", "rq": "m", "rq_theory": "m", "mean": "m",
                  "t_s": "s", "dx": "m", "k1": "1/m", "k2": "1/m", "line_psd": "m^3",
