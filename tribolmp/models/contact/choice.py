@@ -27,7 +27,7 @@ __all__ = ["speed_error_table", "choose_method", "choose_method_for_scene", "red
 
 
 def speed_error_table() -> dict[str, Any] | None:
-    """The shipped speed-against-error table, or None if absent/unreadable."""
+    """Return the shipped speed-against-error table, or None if absent/unreadable."""
     ref = resources.files("tribolmp") / "data" / "contact_speed_error.json"
     try:
         return json.loads(ref.read_text())
@@ -165,7 +165,7 @@ def choose_method(tolerance: float, table: dict[str, Any] | None = None, *, redu
 
 
 def choose_method_for_scene(scene, table: dict[str, Any] | None = None) -> dict[str, Any]:
-    """The ``auto`` choice for a scene: the measured rough-surface table, or MDR for an axisymmetric profile.
+    """Return the ``auto`` choice for a scene: the measured rough-surface table, or MDR for an axisymmetric profile.
 
     The table measures rough contacts only.  For a sphere, cone, flat punch or power-law profile
     the MDR is exact (Popov & Hess; Hertz force error 4e-7 at 1999 springs, docs/contact.md), so

@@ -161,7 +161,7 @@ def _radius_estimate(p: AxisymmetricParams, d: float) -> float:
 
 
 def _row(p: AxisymmetricParams, a_est: float) -> tuple[np.ndarray, np.ndarray]:
-    """The spring row covering 1.25 a_est (flat punch: its edge halfway between two springs)."""
+    """Return the spring row covering 1.25 a_est (flat punch: its edge halfway between two springs)."""
     n = p.springs
     if p.profile == "flat":
         m = (n - 1) // 2
@@ -569,7 +569,7 @@ def params_from_scene(scene):
 
 
 def rough_surface(params: RoughParams, rng: np.random.Generator) -> tuple[np.ndarray, float]:
-    """The height map (m) and pixel size (m): read from ``surface_file`` or generated from the PSD."""
+    """Return the height map (m) and pixel size (m): read from ``surface_file`` or generated from the PSD."""
     from .rough import generate_surface, self_affine_psd
 
     if params.surface_file:

@@ -168,7 +168,7 @@ def exact_gap(p: FilmParams, t):
 
 
 def _log_gap(p: FilmParams, t: np.ndarray) -> np.ndarray:
-    """ln h(t) without underflow for the damper (ln h = ln h0 - W t / alpha); else ln of the gap."""
+    """Ln h(t) without underflow for the damper (ln h = ln h0 - W t / alpha); else ln of the gap."""
     if p.model == "damper":
         return math.log(p.gap0) - p.normal_force * t / (6.0 * math.pi * p.viscosity * p.radius**2)
     phi, inv, _ = _primitive(p)

@@ -202,7 +202,7 @@ def gcb_sliding_force(radius, viscosity, gap, velocity):
 
 
 def couette_sliding_force(radius, viscosity, gap, velocity, length=None):
-    """The seed's Eq. 12: Couette shear only, F = 2 pi R eta U ln(1 + L^2/(2 h R)) in N.
+    """Return the seed's Eq. 12: Couette shear only, F = 2 pi R eta U ln(1 + L^2/(2 h R)) in N.
 
     This omits the pressure-driven part of the lubrication flow; it is
     2-2.6x smaller than :func:`gcb_sliding_force` for 1e-4 <= h/R <= 1e-2.

@@ -97,7 +97,7 @@ def params_from_scene(scene, **overrides) -> StickSlipParams:
 
 
 def contact_from_scene(scene, *, mu: float | None = None, n_springs: int | None = None, rng=None) -> ContactSprings:
-    """The MDR spring row of the scene's contact at its normal load.
+    """Return the MDR spring row of the scene's contact at its normal load.
 
     ``[geometry].profile`` sphere/cone/flat maps directly.  ``rough`` with an
     ``rng`` (numpy Generator) and a ``[roughness]`` section draws one random 1D

@@ -111,7 +111,7 @@ class ContactSprings:
         return self.E_star * w * np.where(f > 0, f, 0.0), self.G_star * ln
 
     def tangential(self):
-        """A fresh :class:`~tribolmp.models.contact.mdr.TangentialMDR` on this row."""
+        """Return a fresh :class:`~tribolmp.models.contact.mdr.TangentialMDR` on this row."""
         from ..contact.mdr import TangentialMDR
 
         return TangentialMDR(self.x, self.g, self.E_star, self.G_star, self.mu)

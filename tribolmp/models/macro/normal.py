@@ -74,7 +74,8 @@ class SqueezeParams:
 
 def squeeze_params_from_scene(scene, **overrides) -> SqueezeParams:
     """:class:`SqueezeParams` from ``[lubricant]`` (viscosity, film thickness), ``[geometry].radius``,
-    ``[load].normal_force`` and ``[kinematics]`` (mass, duration).  Requires a ``[lubricant]`` section."""
+    ``[load].normal_force`` and ``[kinematics]`` (mass, duration).  Requires a ``[lubricant]`` section.
+    """
     from ...errors import ParameterError
 
     if scene.lubricant is None:

@@ -79,7 +79,7 @@ def save_height_map(path, h, pixel_size: float) -> tuple[Path, Path]:
 
 
 def _write_netcdf_copy(path: Path, h, pixel_size: float) -> Path | None:
-    """The same map as NetCDF for SurfaceTopography/Gwyddion users; skipped without SurfaceTopography."""
+    """Return the same map as NetCDF for SurfaceTopography/Gwyddion users; skipped without SurfaceTopography."""
     try:
         import SurfaceTopography  # noqa: F401
     except ImportError:
@@ -222,7 +222,7 @@ def _read_asc(path: Path):
 
 
 def _header_unit(path: Path) -> str | None:
-    """The length unit stated by a ``# x_<unit> ...`` header line, or None."""
+    """Return the length unit stated by a ``# x_<unit> ...`` header line, or None."""
     with path.open("r", errors="replace") as fh:
         for line in fh:
             s = line.strip()

@@ -380,7 +380,7 @@ def _line(exc: BaseException) -> str:
 
 
 def to_surfacetopography(surface: Surface):
-    """The :class:`Surface` as a SurfaceTopography ``Topography``/``UniformLineScan`` (unit m)."""
+    """Return the :class:`Surface` as a SurfaceTopography ``Topography``/``UniformLineScan`` (unit m)."""
     require_surfacetopography("SurfaceTopography export")
     from SurfaceTopography import Topography, UniformLineScan
 
@@ -416,7 +416,7 @@ def write_surface(path, h, pixel_size: float, *, periodic: bool = True) -> Path:
 
 
 def rms_values(h, pixel_size: float, periodic: bool) -> tuple[float, float]:
-    """rms height (m) and rms gradient (1) of a map by plain finite differences (tribolmp's own numbers).
+    """Rms height (m) and rms gradient (1) of a map by plain finite differences (tribolmp's own numbers).
 
     The gradient uses forward differences, wrapped for a periodic map and over
     the ``(ny-1) x (nx-1)`` interior otherwise; for a line scan the second value

@@ -384,7 +384,7 @@ SCHEMES.register("euler")(_EulerFD)
 
 def make_stepper(params: TopographyParams, *, rng: np.random.Generator, scheme: str = "exact",
                  replicas: int = 1, h0: Any = None):
-    """A low-level stepper for callers that drive the time loop themselves.
+    """Return a low-level stepper for callers that drive the time loop themselves.
 
     Returns an object with ``step()`` (advance by ``params.dt``; the exact
     scheme keeps the state in Fourier space and synthesises nothing),

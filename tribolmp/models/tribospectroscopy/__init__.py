@@ -114,7 +114,7 @@ class TribospecParams:
             raise ParameterError("amplitudes", "at least one amplitude", self.amplitudes)
 
     def contact(self):
-        """The MDR spring row of one contact (:class:`~tribolmp.models.macro.contact.ContactSprings`)."""
+        """Return the MDR spring row of one contact (:class:`~tribolmp.models.macro.contact.ContactSprings`)."""
         from ..macro.contact import ContactSprings, profile_from_geometry
 
         x, g = profile_from_geometry(self.profile, self.normal_force, self.E_star, n_springs=self.n_springs,
