@@ -297,7 +297,7 @@ def read_friction_csv(path: str | Path) -> dict[str, np.ndarray]:
 
 
 def _last_segment_mask(values: np.ndarray) -> np.ndarray:
-    """True where ``values[i]`` is smaller than every later value (drops rows superseded by a resume)."""
+    """Return True where ``values[i]`` is smaller than every later value (drops rows superseded by a resume)."""
     values = np.asarray(values, dtype=float)
     later_min = np.minimum.accumulate(values[::-1])[::-1]
     later_min = np.append(later_min[1:], np.inf)

@@ -167,7 +167,7 @@ def steady_frames(times_s: np.ndarray, start_s: float, min_frames: int = 8) -> t
 
 
 def _c2_tallies(fr: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """The C2 cumulative tallies present in friction.csv, by canonical name."""
+    """Return the C2 cumulative tallies present in friction.csv, by canonical name."""
     out = {}
     for name in C2_TALLIES:
         for col in fr:

@@ -37,7 +37,7 @@ __all__ = [
 
 
 def mser_truncation(y, batch: int = 5, max_fraction: float = 0.5) -> tuple[int, bool]:
-    """Number of initial samples to discard so that the rest is steady (MSER-m).
+    """Return number of initial samples to discard so that the rest is steady (MSER-m).
 
     The truncation point ``d`` minimises the marginal standard error
     ``var(y[d:]) / (n - d)`` over batch means of ``batch`` samples, searched in

@@ -95,7 +95,7 @@ class MCAGeometry:
         return len(self.atoms)
 
     def count(self, mol: int) -> int:
-        """Number of automata with molecule id ``mol``."""
+        """Return number of automata with molecule id ``mol``."""
         return int(np.count_nonzero(self.atoms.arrays["mol_id"] == mol))
 
 
@@ -458,7 +458,7 @@ def _too_close(
 
 
 def build_block(*, dim: int, d: float, n: int) -> MCAGeometry:
-    """A single bonded, fully periodic block (mol 2, type 1) for uniaxial tests.
+    """Return a single bonded, fully periodic block (mol 2, type 1) for uniaxial tests.
 
     Parameters
     ----------

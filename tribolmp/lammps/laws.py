@@ -216,7 +216,7 @@ def law_names() -> tuple[str, ...]:
 
 
 def get_law(name: str) -> BondLaw:
-    """The registered law ``name``; one-line ``ParameterError`` otherwise."""
+    """Return the registered law ``name``; one-line ``ParameterError`` otherwise."""
     try:
         return BOND_LAWS[name]
     except KeyError:

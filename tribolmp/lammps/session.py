@@ -292,7 +292,7 @@ class LammpsSession:
         return int(self.lmp.extract_setting("nthreads"))
 
     def has_style(self, category: str, name: str) -> bool:
-        """True when LAMMPS has the style ``name`` of ``category`` (atom, pair, bond, fix, ...)."""
+        """Return True when LAMMPS has the style ``name`` of ``category`` (atom, pair, bond, fix, ...)."""
         return bool(self.lmp.has_style(category, name))
 
     def missing_styles(self, styles: Iterable[tuple[str, str]] = REQUIRED_STYLES) -> list[str]:

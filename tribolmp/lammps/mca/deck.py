@@ -24,7 +24,7 @@ def steps_of(t: float, dt_s: float) -> int:
 def deck_variables(
     params: MCAParams, *, data: str | Path, out: str | Path, seed: int, geom_info: dict
 ) -> dict[str, Any]:
-    """The ``-var`` values of ``mca_friction.in`` for ``params`` (LAMMPS nano units).
+    """Return the ``-var`` values of ``mca_friction.in`` for ``params`` (LAMMPS nano units).
 
     Parameters
     ----------

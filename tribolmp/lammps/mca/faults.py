@@ -33,7 +33,7 @@ class RestartUnreadableError(RunError):
 
 
 def classify(exc: LammpsError, step: int | None) -> RunError:
-    """A :class:`BlowUpError` naming the step and cause, or ``exc`` itself (setup errors)."""
+    """Return a :class:`BlowUpError` naming the step and cause, or ``exc`` itself (setup errors)."""
     for pattern, cause in CAUSES:
         if pattern.search(exc.message):
             where = step if step is not None else "?"
@@ -44,7 +44,7 @@ def classify(exc: LammpsError, step: int | None) -> RunError:
 
 
 def nonfinite_error(step: int, out) -> BlowUpError:
-    """The error of a chunk that ended with non-finite energy or forces."""
+    """Return the error of a chunk that ended with non-finite energy or forces."""
     return BlowUpError(
         f"MCA run failed at step {step}: non-finite kinetic energy or forces (NaN); "
         f"last restart kept in {out}"

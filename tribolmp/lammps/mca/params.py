@@ -21,7 +21,7 @@ __all__ = ["PRESETS", "MCAParams", "params_from_scene", "preset_params"]
 
 
 def _scene_field(section: type, name: str, **meta: Any) -> Any:
-    """A dataclass field with the default and metadata of ``section.name`` (optionally changed)."""
+    """Return a dataclass field with the default and metadata of ``section.name`` (optionally changed)."""
     f = {fl.name: fl for fl in dataclasses.fields(section)}[name]
     return dataclasses.field(default=f.default, metadata={**f.metadata, **meta})
 
@@ -174,7 +174,7 @@ class MCAParams:
         return self.body_texture
 
     def material(self) -> MaterialSpec:
-        """The :class:`MaterialSpec` of the bodies."""
+        """Return the :class:`MaterialSpec` of the bodies."""
         return MaterialSpec(
             youngs_modulus=self.youngs_modulus,
             poisson_ratio=self.poisson_ratio,
@@ -190,7 +190,7 @@ class MCAParams:
         )
 
     def replace(self, **changes: Any) -> MCAParams:
-        """A copy with some fields changed (validated again)."""
+        """Return a copy with some fields changed (validated again)."""
         return dataclasses.replace(self, **changes)
 
 
