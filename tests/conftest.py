@@ -24,7 +24,7 @@ def _tmp_cwd(tmp_path, monkeypatch):
 
 @pytest.fixture
 def rng():
-    """A fixed-seed generator (tests never use global random state)."""
+    """Return a fixed-seed generator (tests never use global random state)."""
     return np.random.default_rng(12345)
 
 
@@ -44,7 +44,7 @@ def lammps_available():
 
 @pytest.fixture
 def lmp(lammps_available, tmp_path):
-    """An open LammpsSession logging to tmp_path/log.lammps."""
+    """Return an open LammpsSession logging to tmp_path/log.lammps."""
     from tribolmp.lammps import LammpsSession
 
     with LammpsSession(log=tmp_path / "log.lammps") as session:
@@ -52,7 +52,7 @@ def lmp(lammps_available, tmp_path):
 
 
 def mpiexec() -> Path:
-    """The mpiexec shipped by the mpich wheel next to this interpreter."""
+    """Return the mpiexec shipped by the mpich wheel next to this interpreter."""
     path = VENV_BIN / "mpiexec"
     if not path.exists():
         pytest.skip("mpiexec from the mpich wheel is not installed in this environment")
@@ -89,7 +89,7 @@ def cli():
 
 
 def assert_one_line_error(res: CLIResult, *fragments: str, code: int = 2) -> None:
-    """A user error: the expected exit code, exactly one line on stderr, no traceback."""
+    """Return a user error: the expected exit code, exactly one line on stderr, no traceback."""
     assert res.returncode == code, (res.returncode, res.stdout, res.stderr)
     lines = [ln for ln in res.stderr.splitlines() if ln.strip()]
     assert len(lines) == 1, res.stderr

@@ -75,7 +75,8 @@ def test_short_stick_slip_run_is_not_called_steady(tmp_path, phase):
     """The smoke-run failure: mu(t) swings by +-0.45 with a period of half the run (1 ns, 200 rows).
 
     The old code took the MSER start (0.1 ns), averaged F/N after it and reported steady = True with a
-    blocking error that had not converged (a lower bound)."""
+    blocking error that had not converged (a lower bound).
+    """
     exp = make_oscillating_friction(tmp_path, np.random.default_rng(11), phase=phase)
     r = FrictionCoefficient(tmp_path).run().results
     assert not r.steady and r.status == 1 and "NOT a steady value" in r.message

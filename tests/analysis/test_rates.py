@@ -149,7 +149,8 @@ def test_c2_tallies_give_cross_body_links(tmp_path):
 
 def test_short_run_without_steady_state_is_flagged(tmp_path):
     """rates.json of a run whose mu(t) swings over half the run: mu_steady false, no steady start, and the
-    trajectory analyses use the same (second-half) window as the flagged mu."""
+    trajectory analyses use the same (second-half) window as the flagged mu.
+    """
     rng = np.random.default_rng(6)
     make_walkers(tmp_path, rng, n_walkers=100, n_frames=40)  # dump frames every 0.1 ns up to 4 ns
     make_oscillating_friction(tmp_path, rng, n=200, dt=2e-11, period=1.8e-9)  # same 4 ns, 2.2 swings

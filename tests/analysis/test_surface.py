@@ -12,7 +12,8 @@ from tribolmp.analysis.synthetic import write_dump, write_meta
 
 def _columns(out, heights_per_frame, d=2.5, n_upper=4):
     """Square lattice (spacing d nm): column j of the lower side holds heights[j] automata (base row included),
-    an upper body of n_upper rows sits on top of the highest column, a slider row above."""
+    an upper body of n_upper rows sits on top of the highest column, a slider row above.
+    """
     nx = heights_per_frame.shape[1]
     L = nx * d
     frames = []

@@ -38,7 +38,7 @@ def path(name: str) -> Path:
 
 
 def expected(name: str) -> dict:
-    """The exact answers stored with dataset ``name``."""
+    """Return the exact answers stored with dataset ``name``."""
     return json.loads((path(name) / "expected.json").read_text())
 
 

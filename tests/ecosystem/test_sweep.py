@@ -65,7 +65,7 @@ figures = false
 
 
 def _measured_scene(tmp_path: Path) -> Path:
-    """A scene whose contact reads [roughness].surface_file: a good x3p, or a corrupt .npy for a failing point."""
+    """Return a scene whose contact reads [roughness].surface_file: a good x3p, or a corrupt .npy for a failing point."""
     from tribolmp.models.topography.measured import write_surface
 
     h = np.random.default_rng(5).normal(size=(16, 16)) * 0.2e-6

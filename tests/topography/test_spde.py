@@ -26,7 +26,7 @@ ALPHA = 1e-3
 
 
 def base(**kw):
-    """A 1D problem with both plateaus and a decade of k^-2 in between."""
+    """Return a 1D problem with both plateaus and a decade of k^-2 in between."""
     p = dict(dim=1, n=256, dx=1.0, d0=1.0, dx_noise=1.0, dz=1.0, mu=2e-3, l=0.1, dt=50.0, steps=20)
     p.update(kw)
     return TopographyParams(**p)
@@ -96,7 +96,7 @@ def test_correlated_noise():
 
 
 def test_real_fft_modes_have_the_right_variance():
-    """k = 0 and Nyquist are real modes, the rest complex (each Re/Im carries half)."""
+    """K = 0 and Nyquist are real modes, the rest complex (each Re/Im carries half)."""
     p = base(n=16, dt=1e3, steps=3, mu=0.05)
     R = 20000
     res = evolve(p, rng=np.random.default_rng(5), replicas=R)
