@@ -50,8 +50,9 @@ def test_every_python_variable_is_declared_by_the_deck(changes):
     assert set(v) <= declared, set(v) - declared
     # and the deck's own defaults that Python leaves alone are only the resume switches and the
     # smoothing, which both decks must share (test_friction_and_tension_decks_share_the_smoothing)
-    # (and relink_deferred, set by a law fragment whose re-linking fix the driver includes later)
-    assert declared - set(v) == {"restart", "resume", "smooth", "relink_deferred"}
+    # (and relink_deferred, set by a law fragment whose re-linking fix the driver includes later;
+    # csv_extra/csv_file, set by a law fragment that prints more friction.csv columns)
+    assert declared - set(v) == {"restart", "resume", "smooth", "relink_deferred", "csv_extra", "csv_file"}
     # normal force = pressure x area, LAMMPS force unit 1e-12 N, pressure unit 1e6 Pa
     assert float(v["FN"]) * 1e-12 == pytest.approx(params.pressure * 50e-9 * 2.5e-9, rel=1e-9)
     assert int(v["restart_every"]) % int(v["print_every"]) == 0

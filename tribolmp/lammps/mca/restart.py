@@ -145,12 +145,21 @@ def discard_run_files(out: Path) -> None:
             p.unlink(missing_ok=True)
 
 
+def _csv_title(text: str) -> str:
+    """Return the file's own title line (a law may print more columns than the four SI ones)."""
+    for ln in text.splitlines():
+        if ln.startswith("time_s,"):
+            return ln.strip()
+    return CSV_TITLE
+
+
 def _csv_rows(text: str) -> list[tuple[float, str]]:
     """Numeric rows of friction.csv as (time, line); anything else (titles, cut lines) dropped."""
+    ncols = len(_csv_title(text).split(","))
     rows = []
     for ln in text.splitlines():
         parts = ln.split(",")
-        if len(parts) != 4:
+        if len(parts) != ncols:
             continue
         try:
             t = float(parts[0])
@@ -197,8 +206,9 @@ def truncate_outputs(out: Path, step: int, dt_s: float) -> None:
     csv = out / "friction.csv"
     if csv.exists():
         t_max = step * dt_s * (1 + 1e-9)
-        rows = _first_rows([(t, ln) for t, ln in _csv_rows(csv.read_text()) if t <= t_max])
-        atomic_write_text(csv, "\n".join([CSV_TITLE, *rows]) + "\n")
+        text = csv.read_text()
+        rows = _first_rows([(t, ln) for t, ln in _csv_rows(text) if t <= t_max])
+        atomic_write_text(csv, "\n".join([_csv_title(text), *rows]) + "\n")
     traj = out / "traj.lammpstrj"
     if traj.exists():
         kept = [fr for st, fr in _frames(traj.read_text()) if st <= step]
@@ -216,8 +226,9 @@ def finalize_outputs(out: Path, dump_every: int) -> None:
     out = Path(out)
     csv = out / "friction.csv"
     if csv.exists():
-        kept = _first_rows(_csv_rows(csv.read_text()))
-        atomic_write_text(csv, "\n".join([CSV_TITLE, *kept]) + "\n")
+        text = csv.read_text()
+        kept = _first_rows(_csv_rows(text))
+        atomic_write_text(csv, "\n".join([_csv_title(text), *kept]) + "\n")
     traj = out / "traj.lammpstrj"
     if traj.exists():
         seen_steps: set[int] = set()
