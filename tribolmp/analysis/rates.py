@@ -31,7 +31,6 @@ own).  No rate is derived from another rate by an identity: the former
 
 from __future__ import annotations
 
-import datetime as _dt
 import json
 import os
 from pathlib import Path
@@ -457,7 +456,6 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
     rates["provenance"] = {
         "tribolmp": __version__,
         "MDAnalysis": MDAnalysis.__version__,
-        "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
         "out_dir": out.name,
         "meta_seed": meta.raw.get("seed"),
         "frames_analysed": int(frames.size),
