@@ -11,6 +11,8 @@ true length and how often the generating model is chosen.
 
 from __future__ import annotations
 
+import zlib
+
 import numpy as np
 import pytest
 
@@ -80,7 +82,9 @@ def test_interval_coverage_quick(kind, noise):
     # 60 sets of 20 points: binomial standard errors 6.0 % (68 %) and 2.8 % (95 %); the
     # bands below are ~2.5 of those around the nominal levels (the 200-set slow run
     # holds the bands 60-76 % and 91-98 %)
-    c68, c95, right = coverage(kind, noise, 60, 20, seed=hash((kind, noise)) % 2**32)
+    # zlib.crc32, not hash(): str hashes are salted per interpreter (PYTHONHASHSEED), which made
+    # this draw, and so the test's outcome, change from run to run
+    c68, c95, right = coverage(kind, noise, 60, 20, seed=zlib.crc32(f"{kind}-{noise}".encode()))
     assert 0.53 <= c68 <= 0.83, c68
     assert 0.88 <= c95 <= 1.0, c95
     assert right >= 0.95, right
