@@ -212,13 +212,22 @@ def test_local_cluster_listens_on_loopback_only_and_serves_resource_tasks():
 
     from tribolmp.campaign import make_client
 
+    me = psutil.Process()
+
+    def listening_sockets():
+        pids = {me.pid} | {p.pid for p in me.children(recursive=True)}
+        return {(c.pid, c.laddr) for c in psutil.net_connections(kind="inet")
+                if c.status == psutil.CONN_LISTEN and c.pid in pids}
+
+    # Sockets that earlier tests left in this process tree are not the cluster's: MPICH's
+    # singleton init (an in-process LAMMPS session) forks an mpiexec that listens on the host's
+    # address until the interpreter exits.  Only the sockets the cluster opens are checked.
+    before = listening_sockets()
     client, cluster = make_client(1, resources={"MPI": 2})
     try:
-        me = psutil.Process()
-        pids = {me.pid} | {p.pid for p in me.children(recursive=True)}
-        listening = [c for c in psutil.net_connections(kind="inet") if c.status == psutil.CONN_LISTEN and c.pid in pids]
+        listening = [laddr for _pid, laddr in listening_sockets() - before]
         assert listening, "found no listening socket of the cluster"
-        assert all(c.laddr.ip == "127.0.0.1" for c in listening), listening
+        assert all(laddr.ip == "127.0.0.1" for laddr in listening), listening
         assert client.submit(_one, resources={"MPI": 2}, pure=False).result(timeout=120) == 1
     finally:
         client.close()
