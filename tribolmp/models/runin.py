@@ -379,27 +379,19 @@ def running_in(
             )
 
         left, sub, phi_now = dt, sub_size or dt, c["phi"]
+
+        def step_params(phi: float, step: float) -> TopographyParams:
+            """Eq. 23 of the part for one sub-step, rates moved to contact fraction ``phi``."""
+            part = bridges.rates_at_part(eq23, phi=phi, velocity_m_s=params.velocity,
+                                         slab_thickness_m=params.slab_thickness)
+            return TopographyParams(
+                dim=2, n=n, dx=dx, d0=part["d0"], dx_noise=part["dx_l2"], dz=part["dz"],
+                mu=part["mu"], l=1.0, correlation_length=correlation_length, dt=step, steps=1,
+            )
+
         while left > 1e-12 * dt:
             step = min(sub, left)
-            part = bridges.rates_at_part(
-                eq23,
-                phi=phi_now,
-                velocity_m_s=params.velocity,
-                slab_thickness_m=params.slab_thickness,
-            )
-            tp = TopographyParams(
-                dim=2,
-                n=n,
-                dx=dx,
-                d0=part["d0"],
-                dx_noise=part["dx_l2"],
-                dz=part["dz"],
-                mu=part["mu"],
-                l=1.0,
-                correlation_length=correlation_length,
-                dt=step,
-                steps=1,
-            )
+            tp = step_params(phi_now, step)
             h_try = np.asarray(evolve(tp, rng=rng, h0=h).h)
             phi_try = phi_of(h_try)
             change = abs(phi_try - phi_now) / max(phi_now, 1e-300)
@@ -410,25 +402,7 @@ def running_in(
             # Corrector (Heun in phi): redo the step with the mean of the fractions at its two ends,
             # so the coupling error is second order in the sub-step.
             phi_mid = 0.5 * (phi_now + phi_try)
-            part = bridges.rates_at_part(
-                eq23,
-                phi=phi_mid,
-                velocity_m_s=params.velocity,
-                slab_thickness_m=params.slab_thickness,
-            )
-            tp = TopographyParams(
-                dim=2,
-                n=n,
-                dx=dx,
-                d0=part["d0"],
-                dx_noise=part["dx_l2"],
-                dz=part["dz"],
-                mu=part["mu"],
-                l=1.0,
-                correlation_length=correlation_length,
-                dt=step,
-                steps=1,
-            )
+            tp = step_params(phi_mid, step)
             h = np.asarray(evolve(tp, rng=rng, h0=h).h)
             # Expectation of the periodogram under the same piecewise-constant coefficients.
             s_theory = expected_periodogram(tp, step, lattice=False, s0=s_theory)
