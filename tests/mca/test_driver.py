@@ -261,7 +261,8 @@ def test_two_ranks_give_statistically_the_same_mu(tmp_path, monkeypatch, lammps_
     _no_rates(monkeypatch)
     from tribolmp.analysis.stats import block_standard_error
 
-    params = preset_params("smoke", duration=4e-9, restart_interval=1e-9)
+    # the bpm law: the mca law refuses several ranks in this release (see test_mca_law_refuses_mpi)
+    params = preset_params("smoke", duration=4e-9, restart_interval=1e-9, bond_style="bpm/spring/plastic")
     mus = []
     for np_ in (1, 2):
         out = tmp_path / f"np{np_}"
@@ -274,3 +275,11 @@ def test_two_ranks_give_statistically_the_same_mu(tmp_path, monkeypatch, lammps_
         mus.append((mu_t.mean(), err))
     (m1, e1), (m2, e2) = mus
     assert abs(m1 - m2) <= 3.0 * np.hypot(e1, e2) + 0.02
+
+
+def test_mca_law_refuses_mpi(tmp_path):
+    """Friction runs of the mca plugin on 2 ranks segfault after a few ns (exit 11): refused, one line."""
+    params = preset_params("smoke", bond_style="mca")
+    with pytest.raises(ParameterError, match=r"^np: expected 1 rank for bond_style 'mca'"):
+        run_mca(params, tmp_path / "out", seed=1, np=2)
+    assert not (tmp_path / "out").exists()  # refused before anything is written
