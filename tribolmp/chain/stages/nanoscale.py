@@ -114,7 +114,7 @@ class Nanoscale(Stage):
     def run(self, ctx: StageContext) -> StageOutput:
         """LAMMPS MCA friction run -> ``rates.json`` (plus friction.csv, trajectory, meta.json)."""
         from ...lammps import mca
-        from ...lammps.resume import run_mca_resuming
+        from ...lammps.mca.restart import run_mca_resuming
         from ...rng import lammps_seed
 
         params = mca.params_from_scene(ctx.scene)

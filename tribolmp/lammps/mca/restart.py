@@ -20,6 +20,9 @@ interrupts:
   interval (the first frame of a re-opened dump).
 * A folder that cannot be resumed (no or foreign ``meta.json``, no data file,
   no readable restart) is discarded and recomputed (:func:`discard_run_files`).
+
+:func:`run_mca_resuming` is the entry point of the chain's nanoscale stage: it
+resumes whatever an earlier, interrupted run left in the stage's folder.
 """
 
 from __future__ import annotations
@@ -40,6 +43,7 @@ __all__ = [
     "prune_restarts",
     "restart_files",
     "resumable_meta",
+    "run_mca_resuming",
     "truncate_outputs",
     "write_restart",
 ]
@@ -238,3 +242,41 @@ def finalize_outputs(out: Path, dump_every: int) -> None:
                 seen_steps.add(st)
                 frames.append(fr)
         atomic_write_text(traj, "".join(frames))
+
+
+def run_mca_resuming(
+    params: Any, out: Path, *, seed: int, ranks: int = 1
+) -> tuple[Any, dict[str, Any]]:
+    """Run :func:`tribolmp.lammps.mca.run_mca` into ``out``, resuming what a kill left there.
+
+    A folder that already holds files is resumed (``run_mca(..., resume=True)``):
+    ``run_mca`` continues from the newest readable restart file of the same
+    run, drops restart files LAMMPS cannot read, and discards a folder of
+    another run.  An empty or missing folder starts a fresh run.
+
+    Parameters
+    ----------
+    params : MCAParams
+        The run's parameters (SI).
+    out : Path
+        Output folder (kept across interrupts).
+    seed : int
+        Seed of the geometry and of LAMMPS.
+    ranks : int
+        MPI ranks.
+
+    Returns
+    -------
+    result : Result
+        What ``run_mca`` returned.
+    info : dict
+        ``resumed`` (bool: the folder held files, so a resume was attempted)
+        and ``discarded_restarts`` (names of the unreadable restart files
+        dropped).
+    """
+    from .driver import run_mca  # the driver imports this module
+
+    out = Path(out)
+    resume = out.is_dir() and any(out.iterdir())
+    res = run_mca(params, out, seed=seed, resume=resume, np=ranks)
+    return res, {"resumed": resume, "discarded_restarts": list(res.get("discarded_restarts", []))}
