@@ -56,16 +56,16 @@ def axisymmetric_table(quick: bool) -> list[dict]:
     }
     for case, (kw, F) in cases.items():
         for n in springs:
-            t, res = _best_time(lambda: solve(AxisymmetricParams(modulus=E, indentation=d, springs=n, **kw)), 3)
+            t, res = _best_time(lambda: solve(AxisymmetricParams(E_star=E, indentation=d, springs=n, **kw)), 3)
             rows.append(dict(case=case, method="mdr", resolution=n, time_s=t, error=abs(res.force / F - 1), quantity="force"))
         for n in grids:
             # Load control at the reference force; error of the indentation (the BEM's output).
-            t, res = _best_time(lambda: solve(AxisymmetricParams(modulus=E, normal_force=F, grid=n, **kw), method="bem"), 1)
+            t, res = _best_time(lambda: solve(AxisymmetricParams(E_star=E, normal_force=F, grid_points=n, **kw), method="bem"), 1)
             rows.append(dict(case=case, method="bem", resolution=n, time_s=t, error=abs(res.indentation / d - 1), quantity="indentation"))
     po = ref.jkr_pull_off_force_control(R, w)
     po_d = ref.jkr_pull_off_displacement_control(R, w)
     for n in springs:
-        t, res = _best_time(lambda: solve(AxisymmetricParams(profile="sphere", radius=R, modulus=E, indentation=d, work_of_adhesion=w, springs=n)), 3)
+        t, res = _best_time(lambda: solve(AxisymmetricParams(profile="sphere", radius=R, E_star=E, indentation=d, work_of_adhesion=w, springs=n)), 3)
         err = max(abs(res.pull_off_force / po - 1), abs(res.pull_off_force_displacement_control / po_d - 1))
         rows.append(dict(case="jkr", method="mdr", resolution=n, time_s=t, error=err, quantity="pull-off (both controls)"))
     return rows

@@ -58,7 +58,7 @@ def table_step(n, repeats):
     rows = []
     grid_bytes = n * n * 8
     for precision in ("double", "single"):
-        p = TopographyParams(dim=2, n=n, dx=1.0, d0=1.0, dx_noise=1.0, dz=1.0, mu=0.01, l=0.1, dt=1.0,
+        p = TopographyParams(dim=2, grid_points=n, pixel_size=1.0, d0=1.0, dx_noise=1.0, dz=1.0, mu=0.01, l=0.1, dt=1.0,
                              steps=1, precision=precision)
         tracemalloc.start()
         stepper = make_stepper(p, rng=np.random.default_rng(1))
@@ -77,7 +77,7 @@ def table_step(n, repeats):
 def table_schemes(quick):
     n = 64 if quick else 256
     R = 32 if quick else 64
-    base = TopographyParams(dim=1, n=n, dx=1.0, d0=1.0, dx_noise=1.0, dz=1.0, mu=0.05, l=1.0, dt=1.0, steps=1,
+    base = TopographyParams(dim=1, grid_points=n, pixel_size=1.0, d0=1.0, dx_noise=1.0, dz=1.0, mu=0.05, l=1.0, dt=1.0, steps=1,
                             operator="lattice")
     T = 60.0 if quick else 200.0  # 6 ... 20 relaxation times of the k = 0 mode
     kmag = 2 * np.pi * np.fft.rfftfreq(n, base.dx)
@@ -98,10 +98,10 @@ def table_schemes(quick):
         if scheme == "exact":
             bias = 0.0
         else:
-            bias = float(np.max(spectra.euler_psd(kmag, math.inf, p.dt, lattice_dx=p.dx, **p.theory_kwargs()) / lat_stat - 1))
+            bias = float(np.max(spectra.euler_psd(kmag, math.inf, p.dt, lattice_dx=p.pixel_size, **p.theory_kwargs()) / lat_stat - 1))
         exp = expected_periodogram(p, math.inf if scheme == "exact" else p.duration, lattice=True)
         test = spectra.psd_consistency(mode_ratios(p, res.h, exp), bands=4)
-        rows.append(dict(scheme=scheme, n=n, replicas=R, t_s=T, dt_s=p.dt, dt_over_dx2_d0=p.dt * p.d0 / p.dx**2,
+        rows.append(dict(scheme=scheme, n=n, replicas=R, t_s=T, dt_s=p.dt, dt_over_dx2_d0=p.dt * p.d0 / p.pixel_size**2,
                          steps=steps, wall_s=wall, analytic_bias=bias,
                          measured_max_band_dev=float(np.max(np.abs(test.band_mean - 1))),
                          band_sd=float(test.rel_sigma.max()), band_test_passed=test.passed))
@@ -112,7 +112,7 @@ def table_sizes(quick):
     sizes = [1 << 10, 1 << 14, 1 << 17] if quick else [1 << 10, 1 << 12, 1 << 14, 1 << 16, 1 << 18, 1 << 20]
     rows = []
     for n in sizes:
-        p = TopographyParams(dim=1, n=n, dx=1.0, d0=1.0, dx_noise=1.0, dz=1.0, mu=1e-4, l=0.1, dt=100.0, steps=20)
+        p = TopographyParams(dim=1, grid_points=n, pixel_size=1.0, d0=1.0, dx_noise=1.0, dz=1.0, mu=1e-4, l=0.1, dt=100.0, steps=20)
         R = max(1, (1 << 16) // n)
         res = evolve(p, rng=np.random.default_rng(3), replicas=R)
         test = spectra.psd_consistency(mode_ratios(p, res.h, expected_periodogram(p, p.duration, lattice=False)), bands=8)

@@ -40,7 +40,7 @@ def fig10_params(quick: bool):
     # inside 2 pi/L ... pi/dx, with both plateaus visible.
     n = 1 << 13 if quick else 1 << 15
     mu = 1e-5
-    return TopographyParams(dim=1, n=n, dx=1.0, d0=1.0, dx_noise=1.0, dz=0.04, mu=mu, l=1.0,
+    return TopographyParams(dim=1, grid_points=n, pixel_size=1.0, d0=1.0, dx_noise=1.0, dz=0.04, mu=mu, l=1.0,
                             dt=5.0 / mu / 20, steps=20)
 
 
@@ -115,7 +115,7 @@ def run_fig10(args, out: Path, rng) -> dict:
             "slope_2d_radial": -fit2.alpha, "slope_2d_radial_theory": -fit2_th.alpha,
             "slope_2d_line_scans": -fit_line.alpha, "slope_2d_line_scans_theory": -fit_line_th.alpha,
             "max_logbin_deviation_sd": float(zdev.max()),
-            "replicas": res.replicas, "n": p.n, "wall_s": res.time_s + res2.time_s}
+            "replicas": res.replicas, "n": p.grid_points, "wall_s": res.time_s + res2.time_s}
 
 
 def run_running_in(args, out: Path, rng) -> dict:

@@ -26,7 +26,7 @@ NX, DX, DT, NOISE, L_STEP = 40, 2.5e-9, 5e-11, 1e-9, 2.5e-9
 
 def synth(rng, *, replicas=1, nt=800, true=TRUE, h0="stationary", noise=NOISE):
     """h(x, t) of ``replicas`` independent runs, shape (replicas, nt, NX), from the exact OU integrator."""
-    p = TopographyParams(dim=1, n=NX, dx=DX, d0=true["d0_m2_s"], dx_noise=true["dx_l2"] / L_STEP**2,
+    p = TopographyParams(dim=1, grid_points=NX, pixel_size=DX, d0=true["d0_m2_s"], dx_noise=true["dx_l2"] / L_STEP**2,
                          dz=true["dz"], mu=true["mu_per_s"], l=L_STEP, dt=DT, steps=1)
     st = make_stepper(p, rng=rng, replicas=replicas, h0=h0)
     h = np.empty((replicas, nt, NX))
@@ -86,7 +86,7 @@ def test_non_stationary_profile_is_invalid(rng):
     # roughness, several times the steady one): it decays over the first ~1.5 ns
     # (slow modes) and the two halves of the run differ
     x, t, h = synth(rng, nt=400, h0=None)
-    p = TopographyParams(dim=1, n=NX, dx=DX, d0=TRUE["d0_m2_s"], dx_noise=TRUE["dx_l2"] / L_STEP**2,
+    p = TopographyParams(dim=1, grid_points=NX, pixel_size=DX, d0=TRUE["d0_m2_s"], dx_noise=TRUE["dx_l2"] / L_STEP**2,
                          dz=TRUE["dz"], mu=TRUE["mu_per_s"], l=L_STEP, dt=DT, steps=1)
     st = make_stepper(p, rng=rng, replicas=1, h0="stationary")
     h0 = 20 * st.heights()[0]

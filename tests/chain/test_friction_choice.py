@@ -46,6 +46,6 @@ def test_every_consumer_uses_the_decision():
 def test_velocity_weakening_default_ratio_lives_in_the_model():
     from tribolmp.models.macro.friction import DYNAMIC_TO_STATIC, VelocityWeakening
 
-    law = VelocityWeakening(mu_s=0.4, mu_d=None, v_c=1e-3)
-    assert law.mu_d == DYNAMIC_TO_STATIC * 0.4
-    assert VelocityWeakening(mu_s=0.4, mu_d=0.1).mu_d == 0.1
+    law = VelocityWeakening(mu_s=0.4, mu_k=None, v_c=1e-3)
+    assert law.mu_k == DYNAMIC_TO_STATIC * 0.4
+    assert VelocityWeakening(mu_s=0.4, mu_k=0.1).mu_k == 0.1

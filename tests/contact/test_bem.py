@@ -64,7 +64,7 @@ def test_periodic_hertz_with_image_correction():
 
 def test_bem_against_mdr_axisymmetric():
     for kw in (dict(profile="cone", half_angle_deg=70.0), dict(profile="sphere", radius=1e-3)):
-        p = AxisymmetricParams(modulus=1e11, indentation=1e-6, grid=64, **kw)
+        p = AxisymmetricParams(E_star=1e11, indentation=1e-6, grid_points=64, **kw)
         mdr, bem = solve(p, method="mdr"), solve(p, method="bem")
         # 64 grid points over 2.5 contact radii: measured 1e-4; the MDR is exact to 1e-6.
         assert bem.force == pytest.approx(mdr.force, rel=1e-3)
@@ -72,7 +72,7 @@ def test_bem_against_mdr_axisymmetric():
 
 
 def test_flat_punch_bem_edge_singularity():
-    p = AxisymmetricParams(profile="flat", radius=1e-3, modulus=1e11, indentation=1e-6, grid=64)
+    p = AxisymmetricParams(profile="flat", radius=1e-3, E_star=1e11, indentation=1e-6, grid_points=64)
     bem = solve(p, method="bem")
     # The 1/sqrt edge singularity is poorly resolved by pixels: first-order error, 1 % at 64^2.
     assert bem.force == pytest.approx(float(ref.flat_punch_force(1e-6, 1e-3, 1e11)), rel=1e-2)

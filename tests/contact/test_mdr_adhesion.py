@@ -77,14 +77,14 @@ def test_jkr_next_to_pull_off(jkr):
 
 
 def test_flat_punch_adhesion_kendall():
-    res = solve(AxisymmetricParams(profile="flat", radius=R, modulus=E, indentation=1e-7, work_of_adhesion=W))
+    res = solve(AxisymmetricParams(profile="flat", radius=R, E_star=E, indentation=1e-7, work_of_adhesion=W))
     # Kendall (1971): F = -sqrt(8 pi R^3 w E*)
     assert res.pull_off_force == pytest.approx(-math.sqrt(8 * math.pi * R**3 * W * E), rel=1e-12)
     assert res.force == pytest.approx(2 * E * R * 1e-7, rel=1e-12)
 
 
 def test_solver_pull_off_through_params():
-    res = solve(AxisymmetricParams(profile="sphere", radius=R, modulus=E, indentation=0.0, work_of_adhesion=W, springs=201))
+    res = solve(AxisymmetricParams(profile="sphere", radius=R, E_star=E, indentation=0.0, work_of_adhesion=W, springs=201))
     assert res.pull_off_force == pytest.approx(ref.jkr_pull_off_force_control(R, W), rel=1e-4)
     assert res.pull_off_force_displacement_control == pytest.approx(ref.jkr_pull_off_displacement_control(R, W), rel=1e-4)
     # d = 0 with adhesion: a = (2 pi w R^2 / E*)^(1/3)

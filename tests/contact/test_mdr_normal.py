@@ -114,7 +114,7 @@ def test_contact_spanning_fewer_than_three_springs():
     # The high-level solver refines the row to the contact and stays at 1e-6.
     from tribolmp.models.contact import AxisymmetricParams, solve
 
-    res = solve(AxisymmetricParams(profile="sphere", radius=R, modulus=E, indentation=1e-15, springs=1999))
+    res = solve(AxisymmetricParams(profile="sphere", radius=R, E_star=E, indentation=1e-15, springs=1999))
     assert abs(res.force / float(ref.hertz_force(1e-15, R, E)) - 1) <= 1e-6
 
 

@@ -162,11 +162,11 @@ def test_rough_input_validation(rng):
     with pytest.raises(ParameterError, match="rng"):
         solve_rough(h, DX, 1e9, [1e6], method="mdr")
     with pytest.raises(ParameterError, match="pressures"):
-        RoughParams(modulus=1e9, pressures=(1e10,))
+        RoughParams(E_star=1e9, pressures=(1e10,))
 
 
 def test_scene_adapter_runs_mdr_and_bem():
-    params = RoughParams(modulus=1e11, pixel_size=2e-6, grid_points=64, pressures=(1e6, 1e7), realizations=8, seed=3)
+    params = RoughParams(E_star=1e11, pixel_size=2e-6, grid_points=64, pressures=(1e6, 1e7), realizations=8, seed=3)
     mdr = stiffness_vs_pressure(params, method="mdr")
     bem = stiffness_vs_pressure(params, method="bem")
     assert [r["pressure"] for r in mdr.rows] == [1e6, 1e7] and "stiffness_q10" in mdr.rows[0]

@@ -338,7 +338,7 @@ def test_eq23_evolve_reports_progress_to_the_end():
     from tribolmp.models.topography import TopographyParams, evolve
 
     seen = []
-    p = TopographyParams(dim=1, n=64, dx=1e-9, d0=1e-12, dx_noise=1e-30, dz=1e-30, mu=1.0, dt=1e-3, steps=1000)
+    p = TopographyParams(dim=1, grid_points=64, pixel_size=1e-9, d0=1e-12, dx_noise=1e-30, dz=1e-30, mu=1.0, dt=1e-3, steps=1000)
     evolve(p, rng=np.random.default_rng(0), progress=lambda f, what="": seen.append(f))
     assert 100 <= len(seen) <= 1001 and seen[-1] == 1.0 and seen == sorted(seen)
 

@@ -79,7 +79,7 @@ def test_equal_static_and_kinetic_friction_does_not_chatter():
 
 
 def test_velocity_weakening_runs_without_chattering():
-    law = VelocityWeakening(mu_s=0.4, mu_d=0.25, v_c=2e-3)
+    law = VelocityWeakening(mu_s=0.4, mu_k=0.25, v_c=2e-3)
     res = stick_slip(StickSlipParams(**P, duration=0.05), law, method="rk45")
     starts, stops = _cycles(res)
     assert len(stops) >= 3

@@ -250,7 +250,7 @@ def test_apparent_stiffness_below_the_bound_on_every_example_scene(rng):
             c = contact_at_load(
                 h,
                 dx,
-                modulus=E,
+                E_star=E,
                 pressure=sc.load.normal_force / A,
                 method="mdr",
                 realizations=r.realizations,
@@ -293,7 +293,7 @@ def test_a_small_patch_scaled_by_area_is_not_the_apparent_stiffness(rng):
     )
     h = evolve(p, rng=rng, h0="stationary").h
     E, A = 1.13e11, 1e-6
-    c = contact_at_load(h, 2.5e-9, modulus=E, pressure=1e7, method="mdr", realizations=16, seed=1)
+    c = contact_at_load(h, 2.5e-9, E_star=E, pressure=1e7, method="mdr", realizations=16, seed=1)
     bound = bridges.punch_bound(A, E)
     assert c["k_per_area"] * A > 3 * bound  # the impossible number of the old conversion
     k = bridges.apparent_contact_stiffness(c["k_per_area"], A, E).stiffness

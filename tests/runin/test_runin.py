@@ -66,10 +66,10 @@ def test_convergence_in_the_checkpoint_spacing():
     eq = bridges.eq23_from_rates(PARTIAL)
     p = runin.RunInParams(
         duration=0.05,
-        velocity=0.01,
+        sliding_velocity=0.01,
         normal_force=10.0,
         apparent_area=1e-6,
-        modulus=E_STEEL,
+        E_star=E_STEEL,
         checkpoints=4,
         realizations=8,
     )
@@ -91,10 +91,10 @@ def test_running_in_records_the_contract_and_the_bound():
     eq = bridges.eq23_from_rates(PARTIAL)
     p = runin.RunInParams(
         duration=0.05,
-        velocity=0.01,
+        sliding_velocity=0.01,
         normal_force=10.0,
         apparent_area=1e-6,
-        modulus=E_STEEL,
+        E_star=E_STEEL,
         checkpoints=3,
         realizations=8,
     )
@@ -138,10 +138,10 @@ def test_bem_checkpoints_give_the_area_and_converge():
     eq = bridges.eq23_from_rates(PARTIAL)
     p = runin.RunInParams(
         duration=0.05,
-        velocity=0.01,
+        sliding_velocity=0.01,
         normal_force=10.0,
         apparent_area=1e-6,
-        modulus=E_STEEL,
+        E_star=E_STEEL,
         checkpoints=4,
         contact_method="bem",
     )
@@ -225,10 +225,10 @@ def test_fig10_shape_from_the_running_in_loop():
     h0 = 1e-10 * np.random.default_rng(2).standard_normal((n, n))  # nearly flat start
     p = runin.RunInParams(
         duration=0.05,
-        velocity=0.01,
+        sliding_velocity=0.01,
         normal_force=10.0,
         apparent_area=1e-6,
-        modulus=E_STEEL,
+        E_star=E_STEEL,
         checkpoints=2,
         slab_thickness=1e-9,
         realizations=4,

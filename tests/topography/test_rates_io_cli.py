@@ -206,6 +206,6 @@ def test_cli_bad_parameters_one_line_exit_2(cli, extra, fragments):
 
 
 def test_params_replace_is_validated():
-    p = TopographyParams(n=16)
+    p = TopographyParams(grid_points=16)
     with pytest.raises(ParameterError, match="mu"):
         replace(p, mu=-1.0)

@@ -27,7 +27,7 @@ ALPHA = 1e-3
 
 def base(**kw):
     """Return a 1D problem with both plateaus and a decade of k^-2 in between."""
-    p = dict(dim=1, n=256, dx=1.0, d0=1.0, dx_noise=1.0, dz=1.0, mu=2e-3, l=0.1, dt=50.0, steps=20)
+    p = dict(dim=1, grid_points=256, pixel_size=1.0, d0=1.0, dx_noise=1.0, dz=1.0, mu=2e-3, l=0.1, dt=50.0, steps=20)
     p.update(kw)
     return TopographyParams(**p)
 
@@ -61,7 +61,7 @@ def test_exact_1d_matches_theory_at_100x_explicit_limit():
 
 
 def test_exact_2d_radial_and_line_scans_match_theory():
-    p = base(dim=2, n=64, dt=200.0, steps=5)
+    p = base(dim=2, grid_points=64, dt=200.0, steps=5)
     res = evolve(p, rng=np.random.default_rng(2), replicas=40)
     assert check(p, res).passed
     # Radial average and line scans are the estimators of the published psd:
@@ -97,13 +97,13 @@ def test_correlated_noise():
 
 def test_real_fft_modes_have_the_right_variance():
     """K = 0 and Nyquist are real modes, the rest complex (each Re/Im carries half)."""
-    p = base(n=16, dt=1e3, steps=3, mu=0.05)
+    p = base(grid_points=16, dt=1e3, steps=3, mu=0.05)
     R = 20000
     res = evolve(p, rng=np.random.default_rng(5), replicas=R)
     hk = np.fft.rfft(res.h, axis=-1)
-    var_theory = expected_periodogram(p, p.duration, lattice=False) * p.n / p.dx
+    var_theory = expected_periodogram(p, p.duration, lattice=False) * p.grid_points / p.pixel_size
     # A real Gaussian mode: mean of R squared values / variance ~ Gamma(R/2, 2/R): sd = sqrt(2/R) = 1 %.
-    for m in (0, p.n // 2):
+    for m in (0, p.grid_points // 2):
         assert abs(hk[:, m].imag).max() < 1e-9 * abs(hk[:, m].real).max()
         assert np.mean(hk[:, m].real ** 2) / var_theory[m] == pytest.approx(1.0, abs=5 * math.sqrt(2 / R))
     # Complex modes: Re and Im independent with half the variance each (sd sqrt(2/R)).
@@ -114,13 +114,13 @@ def test_real_fft_modes_have_the_right_variance():
 
 def test_2d_hermitian_columns():
     """In 2D the k_y = 0 and Nyquist columns hold conjugate pairs: variance must not halve."""
-    p = base(dim=2, n=8, dt=1e3, steps=2, mu=0.05)
+    p = base(dim=2, grid_points=8, dt=1e3, steps=2, mu=0.05)
     R = 20000
     res = evolve(p, rng=np.random.default_rng(6), replicas=R)
-    s = spectra.periodogram(res.h, p.dx, 2).mean(axis=0)
+    s = spectra.periodogram(res.h, p.pixel_size, 2).mean(axis=0)
     exp = expected_periodogram(p, p.duration, lattice=False)
     # Columns 0 and n/2 (incl. 4 real modes, sd sqrt(2/R) = 1 %); 5 sigma.
-    for c in (0, p.n // 2):
+    for c in (0, p.grid_points // 2):
         np.testing.assert_allclose(s[:, c] / exp[:, c], 1.0, atol=5 * math.sqrt(2 / R))
 
 
@@ -151,11 +151,11 @@ def test_stationary_start():
 
 
 def test_euler_matches_its_own_exact_discrete_theory_and_is_biased():
-    p = base(n=32, mu=0.05, dt=0.25, steps=240)  # dt ~ 0.5 of the limit 0.494 s
+    p = base(grid_points=32, mu=0.05, dt=0.25, steps=240)  # dt ~ 0.5 of the limit 0.494 s
     assert p.dt < euler_dt_limit(p) and p.dt > 0.4 * euler_dt_limit(p)
     res = evolve(p, rng=np.random.default_rng(9), replicas=3000, scheme="euler")
-    kmag = np.abs(2 * np.pi * np.fft.rfftfreq(p.n, p.dx))
-    exp_euler = spectra.euler_psd(kmag, p.steps, p.dt, lattice_dx=p.dx, **p.theory_kwargs())
+    kmag = np.abs(2 * np.pi * np.fft.rfftfreq(p.grid_points, p.pixel_size))
+    exp_euler = spectra.euler_psd(kmag, p.steps, p.dt, lattice_dx=p.pixel_size, **p.theory_kwargs())
     assert check(p, res, expected=exp_euler).passed
     # The continuum-time lattice theory misses the 1/(1 - gamma dt/2) inflation (2x at Nyquist).
     assert not check(p, res, lattice=True).passed
@@ -165,12 +165,12 @@ def test_euler_matches_its_own_exact_discrete_theory_and_is_biased():
 def test_euler_small_step_converges_to_lattice_theory():
     # dt = 0.005 dx^2/D0 with mu << 4 D0/dx^2: stationary bias 1/(1 - gamma dt/2) - 1
     # ~ 1 % at Nyquist and less below (PHYSICS.md section 4).
-    p = base(n=32, mu=0.05, dt=0.005, steps=1600)
-    kmag = np.abs(2 * np.pi * np.fft.rfftfreq(p.n, p.dx))
-    exp_euler = spectra.euler_psd(kmag, math.inf, p.dt, lattice_dx=p.dx, **p.theory_kwargs())
-    exp_exact = spectra.stationary_psd(kmag, lattice_dx=p.dx, **p.theory_kwargs())
+    p = base(grid_points=32, mu=0.05, dt=0.005, steps=1600)
+    kmag = np.abs(2 * np.pi * np.fft.rfftfreq(p.grid_points, p.pixel_size))
+    exp_euler = spectra.euler_psd(kmag, math.inf, p.dt, lattice_dx=p.pixel_size, **p.theory_kwargs())
+    exp_exact = spectra.stationary_psd(kmag, lattice_dx=p.pixel_size, **p.theory_kwargs())
     bias = exp_euler / exp_exact - 1
-    gamma_max = p.mu + 4 * p.d0 / p.dx**2
+    gamma_max = p.mu + 4 * p.d0 / p.pixel_size**2
     assert bias.max() == pytest.approx(1 / (1 - gamma_max * p.dt / 2) - 1, rel=1e-9)
     assert 0.0095 < bias.max() < 0.0105
     res = evolve(p, rng=np.random.default_rng(10), replicas=200, scheme="euler")
@@ -190,7 +190,7 @@ def rq2_rel_sd(p, t, replicas):
 @pytest.mark.parametrize("dim", [1, 2])
 def test_conserved_noise_conserves_mass(scheme, dim, rng):
     n = 32 if dim == 1 else 16
-    p = base(dim=dim, n=n, dz=0.0, mu=0.0, dt=0.05 if scheme == "euler" else 5.0, steps=50)
+    p = base(dim=dim, grid_points=n, dz=0.0, mu=0.0, dt=0.05 if scheme == "euler" else 5.0, steps=50)
     h0 = rng.normal(0.3, 1.0, size=p.shape)
     res = evolve(p, rng=np.random.default_rng(11), h0=h0, scheme=scheme, replicas=4)
     means = res.h.reshape(4, -1).mean(axis=1)
@@ -242,7 +242,7 @@ def test_hard_case_dz_zero():
 
 def test_hard_case_large_1d_grid():
     n = 1 << 20
-    p = base(n=n, dt=1e3, steps=3)
+    p = base(grid_points=n, dt=1e3, steps=3)
     res = evolve(p, rng=np.random.default_rng(15))
     assert res.h.shape == (n,)
     # 2^19 modes in 16 bands: band sd ~ 0.6 %, so this is a sharp test.
@@ -290,7 +290,7 @@ def test_bad_h0_and_replicas():
     with pytest.raises(ParameterError, match="h0"):
         evolve(p, rng=np.random.default_rng(0), h0=np.zeros(10))
     with pytest.raises(ParameterError, match="h0: expected 2 initial surfaces"):
-        evolve(p, rng=np.random.default_rng(0), h0=np.zeros((3, p.n)), replicas=2)
+        evolve(p, rng=np.random.default_rng(0), h0=np.zeros((3, p.grid_points)), replicas=2)
     with pytest.raises(ParameterError, match="replicas"):
         evolve(p, rng=np.random.default_rng(0), replicas=0)
     with pytest.raises(ParameterError, match="scheme"):
@@ -301,14 +301,14 @@ def test_bad_h0_and_replicas():
 def test_deterministic_relaxation_is_exact(dim, rng):
     """Without noise each mode decays as exp(-gamma t) (exact) or (1 - gamma dt)^n (Euler, lattice)."""
     n = 64 if dim == 1 else 16
-    p = base(dim=dim, n=n, dz=0.0, dx_noise=0.0, mu=0.03, dt=0.1, steps=40)
+    p = base(dim=dim, grid_points=n, dz=0.0, dx_noise=0.0, mu=0.03, dt=0.1, steps=40)
     h0 = rng.normal(size=p.shape)
-    kv = [2 * np.pi * np.fft.fftfreq(n, p.dx)] * dim
+    kv = [2 * np.pi * np.fft.fftfreq(n, p.pixel_size)] * dim
     kgrid = np.meshgrid(*kv, indexing="ij")
     hk0 = np.fft.fftn(h0)
     for scheme, operator in (("exact", "spectral"), ("exact", "lattice"), ("euler", "lattice")):
         q = replace(p, operator=operator)
-        k2 = sum(spectra.lattice_k2(k, p.dx) if operator == "lattice" else k**2 for k in kgrid)
+        k2 = sum(spectra.lattice_k2(k, p.pixel_size) if operator == "lattice" else k**2 for k in kgrid)
         gamma = p.mu + p.d0 * k2
         factor = np.exp(-gamma * p.duration) if scheme == "exact" else (1 - gamma * p.dt) ** p.steps
         expected = np.fft.ifftn(hk0 * factor).real
@@ -322,20 +322,20 @@ def test_deterministic_relaxation_is_exact(dim, rng):
 
 
 def test_euler_with_correlated_noise():
-    p = base(n=32, mu=0.05, dt=0.25, steps=200, correlation_length=2.0)
+    p = base(grid_points=32, mu=0.05, dt=0.25, steps=200, correlation_length=2.0)
     res = evolve(p, rng=np.random.default_rng(16), replicas=2000, scheme="euler")
-    kmag = np.abs(2 * np.pi * np.fft.rfftfreq(p.n, p.dx))
-    exp_euler = spectra.euler_psd(kmag, p.steps, p.dt, lattice_dx=p.dx, **p.theory_kwargs())
+    kmag = np.abs(2 * np.pi * np.fft.rfftfreq(p.grid_points, p.pixel_size))
+    exp_euler = spectra.euler_psd(kmag, p.steps, p.dt, lattice_dx=p.pixel_size, **p.theory_kwargs())
     assert check(p, res, expected=exp_euler).passed
     # Without the F~ filter the high-k power would be e^(k^2 lc^2 / 2) ~ 1e8 x larger at Nyquist.
-    assert not check(p, res, expected=spectra.euler_psd(kmag, p.steps, p.dt, lattice_dx=p.dx,
+    assert not check(p, res, expected=spectra.euler_psd(kmag, p.steps, p.dt, lattice_dx=p.pixel_size,
                                                         **{**p.theory_kwargs(), "correlation_length": 0.0})).passed
 
 
 def test_make_stepper_matches_evolve():
     from tribolmp.models.topography import make_stepper
 
-    p = base(n=32, steps=7)
+    p = base(grid_points=32, steps=7)
     st = make_stepper(p, rng=np.random.default_rng(5))
     for _ in range(p.steps):
         st.step()

@@ -80,7 +80,7 @@ def _stick_slip(args, scene) -> dict:
         law = make_friction_law("constant", mu_s=mu0 if args.mu_s is None else args.mu_s, mu_k=args.mu_k)
     else:
         mu_s = mu0 if args.mu_s is None else args.mu_s
-        law = make_friction_law("velocity-weakening", mu_s=mu_s, mu_d=args.mu_k, v_c=args.v_c)
+        law = make_friction_law("velocity-weakening", mu_s=mu_s, mu_k=args.mu_k, v_c=args.v_c)
     over = {"unload_time": args.unload_time}
     if args.duration is not None:
         over["duration"] = args.duration

@@ -131,16 +131,16 @@ def _evolve(args) -> int:
 
         out = Path(args.out)
         h0 = res.h if res.replicas == 1 else res.h[0]
-        npy, side = save_height_map(out / "height_map.npy", h0, params.dx)
+        npy, side = save_height_map(out / "height_map.npy", h0, params.pixel_size)
         files = {"npy": str(npy), "json": str(side)}
         ascii_name = "height_map.asc" if params.dim == 2 else "height_map.xyz"
-        files["ascii"] = str(save_ascii_grid(out / ascii_name, h0, params.dx))
+        files["ascii"] = str(save_ascii_grid(out / ascii_name, h0, params.pixel_size))
         if (out / "height_map.nc").exists():
             files["netcdf"] = str(out / "height_map.nc")  # written by save_height_map through SurfaceTopography
         if params.dim == 2 and "netcdf" in files:
             from ..models.topography.measured import write_surface
 
-            files["x3p"] = str(write_surface(out / "height_map.x3p", h0, params.dx))
+            files["x3p"] = str(write_surface(out / "height_map.x3p", h0, params.pixel_size))
         table = np.column_stack([res.k, res.psd, res.psd_theory])
         np.savetxt(out / "psd.csv", table, delimiter=",", header="k_1_per_m,psd,psd_theory", comments="")
         files["psd_csv"] = str(out / "psd.csv")
@@ -148,7 +148,7 @@ def _evolve(args) -> int:
         emit_json({
             "k": res.k, "psd": res.psd, "psd_theory": res.psd_theory, "psd_stationary": res.psd_stationary,
             "time_s": res.time_s, "steps_per_s": res.steps_per_s, "steps": params.steps, "dt_s": params.dt,
-            "t_s": res.t_s, "dim": params.dim, "n": params.n, "dx_m": params.dx, "replicas": res.replicas,
+            "t_s": res.t_s, "dim": params.dim, "n": params.grid_points, "dx_m": params.pixel_size, "replicas": res.replicas,
             "scheme": res.scheme, "operator": res.operator, "rq_m": res.rq, "rq_theory_m": res.rq_theory,
             "mean_m": res.mean, "k1_1_per_m": res.k1, "k2_1_per_m": res.k2, "roughness": res.roughness,
             "files": files, "status": res.status, "message": res.message,

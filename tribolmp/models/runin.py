@@ -54,13 +54,13 @@ class RunInParams:
     ----------
     duration : float
         Sliding time (s).
-    velocity : float
+    sliding_velocity : float
         Sliding velocity of the part (m/s).
     normal_force : float
         Normal load (N).
     apparent_area : float
         Apparent (nominal) contact area (m^2).
-    modulus : float
+    E_star : float
         Effective modulus E* (Pa).
     checkpoints : int
         Number of equal intervals of the duration.
@@ -83,12 +83,12 @@ class RunInParams:
     """
 
     duration: float = param(0.05, unit="s", lo=0.0, lo_open=True, doc="Sliding time.")
-    velocity: float = param(0.01, unit="m/s", lo=0.0, doc="Sliding velocity of the part.")
+    sliding_velocity: float = param(0.01, unit="m/s", lo=0.0, doc="Sliding velocity of the part.")
     normal_force: float = param(10.0, unit="N", lo=0.0, lo_open=True, doc="Normal load.")
     apparent_area: float = param(
         1e-6, unit="m^2", lo=0.0, lo_open=True, doc="Apparent contact area."
     )
-    modulus: float = param(1.13e11, unit="Pa", lo=0.0, lo_open=True, doc="Effective modulus E*.")
+    E_star: float = param(1.13e11, unit="Pa", lo=0.0, lo_open=True, doc="Effective modulus E*.")
     checkpoints: int = param(8, lo=1, hi=10_000, doc="Equal intervals of the duration.")
     slab_thickness: float = param(
         2.5e-9, unit="m", lo=0.0, lo_open=True, doc="MCA slab thickness w."
@@ -174,7 +174,7 @@ def contact_at_load(
     h: np.ndarray,
     dx: float,
     *,
-    modulus: float,
+    E_star: float,
     pressure: float,
     method: str,
     realizations: int,
@@ -204,7 +204,7 @@ def contact_at_load(
         except ImportError:
             interfacial_stiffness = None
         if interfacial_stiffness is not None:
-            r = interfacial_stiffness(h, dx, modulus, [pressure])
+            r = interfacial_stiffness(h, dx, E_star, [pressure])
             kpa, area = (
                 float(np.asarray(r["stiffness_per_area"])[0]),
                 float(np.asarray(r["area_fraction"])[0]),
@@ -212,7 +212,7 @@ def contact_at_load(
         else:
             from .contact.bem import solve_bem
 
-            r = solve_bem(h, dx, modulus, pressure, periodic=True)
+            r = solve_bem(h, dx, E_star, pressure, periodic=True)
             kpa, area = float(r.stiffness) / patch, float(r.area_fraction)
         phi, src = area, "BEM real-contact fraction"
     elif method == "mdr":
@@ -221,7 +221,7 @@ def contact_at_load(
         r = solve_rough(
             h,
             dx,
-            modulus,
+            E_star,
             [pressure],
             method="mdr",
             realizations=realizations,
@@ -229,7 +229,7 @@ def contact_at_load(
         )
         kpa = float(np.asarray(r["stiffness"])[0]) / patch
         area = None
-        phi = bridges.contact_fraction_estimate(pressure, modulus, grad)
+        phi = bridges.contact_fraction_estimate(pressure, E_star, grad)
         src = "estimate kappa p/(E* |grad h|_rms), kappa = 2 (MDR gives no area)"
     else:
         raise ParameterError("contact_method", "one of ['mdr', 'bem']", method)
@@ -310,19 +310,19 @@ def running_in(
     N = params.checkpoints
     dt = params.duration / N
     area = params.apparent_area
-    bound = bridges.punch_bound(area, params.modulus)
+    bound = bridges.punch_bound(area, params.E_star)
 
     def record(hh):
         c = contact_at_load(
             hh,
             dx,
-            modulus=params.modulus,
+            E_star=params.E_star,
             pressure=params.pressure,
             method=params.contact_method,
             realizations=params.realizations,
             seed=params.contact_seed,
         )
-        c["k"] = bridges.apparent_contact_stiffness(c["k_per_area"], area, params.modulus)[
+        c["k"] = bridges.apparent_contact_stiffness(c["k_per_area"], area, params.E_star)[
             "stiffness"
         ]
         return c
@@ -345,7 +345,10 @@ def running_in(
         if keep_surfaces:
             surfaces.append(h.copy())
         part = bridges.rates_at_part(
-            eq23, phi=c["phi"], velocity_m_s=params.velocity, slab_thickness_m=params.slab_thickness
+            eq23,
+            phi=c["phi"],
+            velocity_m_s=params.sliding_velocity,
+            slab_thickness_m=params.slab_thickness,
         )
         rows.append(
             {
@@ -366,7 +369,7 @@ def running_in(
         t1 = time.perf_counter()
         # phi between checkpoints: the same estimate from the rms gradient (MDR), or the estimate
         # calibrated on this checkpoint's BEM area (ratio held until the next BEM solve).
-        est0 = bridges.contact_fraction_estimate(params.pressure, params.modulus, c["grad_rms"])
+        est0 = bridges.contact_fraction_estimate(params.pressure, params.E_star, c["grad_rms"])
         cal = c["phi"] / est0 if est0 > 0 else 1.0
 
         def phi_of(hh, cal=cal):
@@ -374,7 +377,7 @@ def running_in(
                 1.0,
                 cal
                 * bridges.contact_fraction_estimate(
-                    params.pressure, params.modulus, bridges.rms_gradient(hh, dx)
+                    params.pressure, params.E_star, bridges.rms_gradient(hh, dx)
                 ),
             )
 
@@ -382,7 +385,7 @@ def running_in(
 
         def step_params(phi: float, step: float) -> TopographyParams:
             """Eq. 23 of the part for one sub-step, rates moved to contact fraction ``phi``."""
-            part = bridges.rates_at_part(eq23, phi=phi, velocity_m_s=params.velocity,
+            part = bridges.rates_at_part(eq23, phi=phi, velocity_m_s=params.sliding_velocity,
                                          slab_thickness_m=params.slab_thickness)
             return TopographyParams(
                 dim=2, n=n, dx=dx, d0=part["d0"], dx_noise=part["dx_l2"], dz=part["dz"],
@@ -415,7 +418,7 @@ def running_in(
     stationary = expected_periodogram(tp, math.inf, lattice=False) if tp is not None else None
     t_arr = np.array([r["time_s"] for r in rows])
     out = Result(
-        sliding_distance_m=(params.velocity * t_arr).tolist(),
+        sliding_distance_m=(params.sliding_velocity * t_arr).tolist(),
         sliding_time_s=t_arr.tolist(),
         rq_m=[r["rq"] for r in rows],
         normal_stiffness_N_m=[r["k"] for r in rows],
@@ -470,7 +473,7 @@ def running_in(
     )
     out.message = (
         f"{N} checkpoints over {params.duration:g} s "
-        f"({params.velocity * params.duration:g} m slid): Rq {out.rq_initial_m:.3g} -> "
+        f"({params.sliding_velocity * params.duration:g} m slid): Rq {out.rq_initial_m:.3g} -> "
         f"{out.rq_final_m:.3g} m, k {rows[0]['k']:.3g} -> {rows[-1]['k']:.3g} N/m "
         f"(bound {bound:.3g} N/m)"
     )

@@ -203,7 +203,7 @@ class Topography(Stage):
         rates, rates_src = upstream_rates(ctx)
         params = topo.params_from_scene(ctx.scene, rates=rates)
         res = topo.evolve(params, rng=ctx.rng, scheme=ctx.scene.topography.scheme, progress=ctx.progress)
-        topo.save_height_map(ctx.workdir / "surface.npy", res.h, params.dx)
+        topo.save_height_map(ctx.workdir / "surface.npy", res.h, params.pixel_size)
         np.savez(ctx.workdir / "psd.npz", k=res.k, psd=res.psd, psd_theory=res.psd_theory)
         files = {"surface": "surface.npy", "psd": "psd.npz"}
         if (ctx.workdir / "surface.json").exists():
@@ -270,8 +270,8 @@ def _running_in(ctx: StageContext) -> StageOutput:
     area = geo.apparent_length * geo.apparent_width
     seed = int(ctx.seed[-1]) if ctx.seed else 0
     params = runin.RunInParams(
-        duration=scene.kinematics.duration, velocity=scene.kinematics.sliding_velocity,
-        normal_force=scene.load.normal_force, apparent_area=area, modulus=scene.effective_modulus,
+        duration=scene.kinematics.duration, sliding_velocity=scene.kinematics.sliding_velocity,
+        normal_force=scene.load.normal_force, apparent_area=area, E_star=scene.effective_modulus,
         checkpoints=ri.checkpoints, slab_thickness=float(slab), contact_method=method,
         realizations=rough.realizations, contact_seed=seed, phi_tolerance=ri.phi_tolerance)
     # Friction at the part: the shipped nanoscale table when present, else the one measured condition.
@@ -287,7 +287,7 @@ def _running_in(ctx: StageContext) -> StageOutput:
 
     def friction(phi: float):
         p = params.pressure if ri.friction_pressure == "nominal" else params.pressure / max(phi, 1e-300)
-        return bridges.friction_at_part(rows, pressure_Pa=p, velocity_m_s=max(params.velocity, 1e-300),
+        return bridges.friction_at_part(rows, pressure_Pa=p, velocity_m_s=max(params.sliding_velocity, 1e-300),
                                         mu_static=mu_s_given, mu_kinetic=mu_k_given,
                                         static_ratio=ri.static_ratio, pressure_source=ri.friction_pressure)
 
@@ -320,7 +320,7 @@ def _running_in(ctx: StageContext) -> StageOutput:
         "dim": 2, "domain_size_m": float(res.domain_size_m), "pixel_size_m": float(dx), "grid_points": int(res.h.shape[0]),
         "rq_initial_m": float(res.rq_initial_m), "rq_final_m": float(res.rq_final_m), "rq": float(res.rq_final_m),
         "correlation_length_m": corr if np.isfinite(corr) else None, "surface_source": surf_src,
-        "sliding_distance_m": params.velocity * params.duration, "duration_s": params.duration,
+        "sliding_distance_m": params.sliding_velocity * params.duration, "duration_s": params.duration,
         "rates_source": rates_src, "eq23_source": eq.source, "eq23_sources": dict(eq.sources),
         "eq23_warnings": list(eq.warnings), "shape_fixed_by_identity": bool(eq.shape_fixed_by_identity),
         "eq23_mca": jsonable({k: eq[k] for k in ("mu", "d0", "dz", "dx_l2", "k1", "k2", "velocity_m_s", "pressure_Pa")}),

@@ -46,7 +46,8 @@ REG = MethodRegistry("contact")
 ROUGH_REG = MethodRegistry("rough contact")
 
 
-@renamed(modulus="E_star")  # old name kept (docs/conventions.md)
+# Old names kept: ``modulus`` (CLI --modulus), ``grid`` (CLI --grid; a bad value is named as given).
+@renamed(modulus="E_star", grid="grid_points")  # docs/conventions.md
 @dataclass(frozen=True)
 class AxisymmetricParams:
     """An axisymmetric rigid indenter on an elastic half-space (SI units).
@@ -64,7 +65,7 @@ class AxisymmetricParams:
     normal_force: float | None = param(None, unit="N", lo=0.0, lo_open=True, hi=1e12, doc="Prescribed normal force (alternative to d).")
     work_of_adhesion: float = param(0.0, unit="J/m^2", lo=0.0, hi=1e6, doc="Dupre work of adhesion (JKR via Hess's rule).")
     springs: int = param(2001, lo=9, hi=10**7, doc="MDR springs over the row.")
-    grid: int = param(128, lo=16, hi=4096, doc="BEM grid points per side.")
+    grid_points: int = param(128, lo=16, hi=4096, doc="BEM grid points per side.")
 
     def __post_init__(self) -> None:
         validate_dataclass(self)
@@ -225,7 +226,7 @@ def _solve_bem(p: AxisymmetricParams) -> Result:
         raise MissingFeatureError("work_of_adhesion with method 'bem': the BEM reference is non-adhesive; use --method mdr")
     d = p.indentation if p.indentation is not None else _indentation_for_force(p)
     a = _radius_estimate(p, d)
-    n = p.grid
+    n = p.grid_points
     # The punch (non-periodic) grid spans 2.5 contact radii: the contact is well inside.
     L = 2.5 * a if p.profile != "flat" else 2.2 * p.radius
     dx = L / n

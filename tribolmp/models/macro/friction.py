@@ -63,7 +63,7 @@ class ConstantFriction(FrictionLaw):
         return self.mu_k
 
 
-#: High-speed to static friction ratio of a velocity-weakening law when no mu_d is given: a typical
+#: High-speed to static friction ratio of a velocity-weakening law when no mu_k is given: a typical
 #: dry metal-on-metal value (kinetic ~ 3/4 of static), stated wherever it is used.
 DYNAMIC_TO_STATIC = 0.75
 
@@ -71,26 +71,38 @@ DYNAMIC_TO_STATIC = 0.75
 @FRICTION_LAWS.register("velocity-weakening")
 @dataclass(frozen=True)
 class VelocityWeakening(FrictionLaw):
-    """``mu_k(v) = mu_d + (mu_s - mu_d) exp(-v / v_c)``: continuous at rest, weakening with speed.
+    """Velocity-weakening friction, ``kinetic(v) = mu_k + (mu_s - mu_k) exp(-|v| / v_c)``.
 
-    ``mu_d = None`` takes :data:`DYNAMIC_TO_STATIC` times ``mu_s`` (a default ratio, not a measurement).
+    Continuous at rest (``kinetic(0) = mu_s``) and weakening with speed
+    towards ``mu_k``.
+
+    Parameters
+    ----------
+    mu_s : float
+        Static coefficient (1), also the kinetic coefficient at rest.
+    mu_k : float or None
+        Kinetic coefficient at high speed (1).  None takes
+        :data:`DYNAMIC_TO_STATIC` times ``mu_s`` (a default ratio, not a
+        measurement).
+    v_c : float
+        Characteristic weakening speed (m/s).
     """
 
     mu_s: float = 0.4
-    mu_d: float | None = 0.25
+    mu_k: float | None = 0.25
     v_c: float = 1e-3
 
     def __post_init__(self):
         check_range("mu_s", self.mu_s, 0.0, 10.0)
-        if self.mu_d is None:
-            object.__setattr__(self, "mu_d", DYNAMIC_TO_STATIC * float(self.mu_s))
-        check_range("mu_d", self.mu_d, 0.0, 10.0)
+        if self.mu_k is None:
+            object.__setattr__(self, "mu_k", DYNAMIC_TO_STATIC * float(self.mu_s))
+        check_range("mu_k", self.mu_k, 0.0, 10.0)
         check_positive("v_c", self.v_c, "m/s")
         self._check()
 
     def kinetic(self, v: float) -> float:
         """Kinetic coefficient at sliding speed ``v`` (m/s)."""
-        return self.mu_d + (self.mu_s - self.mu_d) * math.exp(-abs(v) / self.v_c)
+        return self.mu_k + (self.mu_s - self.mu_k) * math.exp(-abs(v) / self.v_c)
 
 
 @FRICTION_LAWS.register("table")
