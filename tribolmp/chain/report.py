@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..environment import versions
 from ..jsonio import atomic_write_json, atomic_write_text, hash_inputs
+from .stage import fmt
 
 if TYPE_CHECKING:  # pragma: no cover
     from .runner import ChainRun
@@ -84,7 +85,7 @@ def report_dict(
                 k: _rel(e.cached.path / v, run.out_dir) for k, v in rec.get("files", {}).items()
             }
         details[name] = d
-    return {
+    report = {
         "tribolmp_version": versions()["tribolmp"],
         "complete": not partial and run.complete,
         "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
@@ -103,9 +104,13 @@ def report_dict(
         "results": results,
         "handoffs": handoffs,
         "figures": figures or {},
-        # Issue 15 contract: the running-in series of the part (topography stage), top level.
-        "running_in": (results.get("topography", {}).get("values", {}) or {}).get("running_in"),
     }
+    # Top-level fields the stages publish (e.g. the topography stage's "running_in", the
+    # issue 15 contract), in registry order; None for a stage without results.
+    for stage in run.plan.registry:
+        values = results.get(stage.name, {}).get("values", {}) or {}
+        report.update(stage.report_fields(values))
+    return report
 
 
 def write_json(
@@ -133,95 +138,25 @@ def write_report(run: ChainRun, *, figures: bool = True) -> Path:
     if fig_errors:
         data["figure_errors"] = fig_errors
     atomic_write_json(run.out_dir / "report.json", data)
-    return atomic_write_text(run.out_dir / "report.md", _markdown(data))
+    return atomic_write_text(run.out_dir / "report.md", _markdown(data, run.plan.registry))
 
 
 # ------------------------------------------------------------------ markdown
 
 
-def _fmt(v: Any) -> str:
-    if isinstance(v, float):
-        return f"{v:.4g}"
-    if isinstance(v, list) and len(v) > 8:
-        return f"[{len(v)} values: {_fmt(v[0])} ... {_fmt(v[-1])}]"
-    if isinstance(v, list):
-        return "[" + ", ".join(_fmt(x) for x in v) + "]"
-    return str(v)
-
-
-def _narrative(data: dict[str, Any]) -> list[str]:
-    """Tell what ran, from which inputs, under which assumptions (issue 15)."""
-    res = data["results"]
+def _narrative(data: dict[str, Any], registry) -> list[str]:
+    """Tell what ran, from which inputs, under which assumptions: each stage's own summary."""
     out: list[str] = []
-    topo = res.get("topography", {}).get("values", {})
-    if "running_in" in topo:
-        ri = topo["running_in"]
-        fr = topo.get("friction") or {}
-        eq = topo.get("eq23_mca") or {}
-        warn = " ".join(topo.get("eq23_warnings") or [])
-        k_n = ri["normal_stiffness_N_m"]
-        factor = ri["rate_factor"]
-        extra = f"; **extrapolated**: {fr.get('extrapolation')}" if fr.get("extrapolated") else ""
-        out += [
-            f"- **Rates** from {topo.get('rates_source')}: Eq. 23 coefficients "
-            f"{topo.get('eq23_source')} at the MCA's V = {_fmt(eq.get('velocity_m_s'))} m/s, "
-            f"P = {_fmt(eq.get('pressure_Pa'))} Pa (k1 = {_fmt(eq.get('k1'))}, "
-            f"k2 = {_fmt(eq.get('k2'))} 1/m). {warn}".rstrip(),
-            "- **At the part** every rate is multiplied by phi V_part / V_MCA (processes scale "
-            f"with the distance slid in contact; factor {_fmt(factor[0])} at the start, "
-            f"{_fmt(factor[-1])} at the end) and the noise intensities by the slab thickness "
-            f"w = {_fmt(topo.get('slab_thickness_m'))} m ({topo.get('slab_thickness_source')}) "
-            "to go from the MCA's 1D profile to the 2D surface.",
-            f"- **Surface**: {topo.get('surface_source')}, "
-            f"side {_fmt(topo.get('domain_size_m'))} m; "
-            f"Rq {_fmt(topo.get('rq_initial_m'))} -> {_fmt(topo.get('rq_final_m'))} m over "
-            f"{_fmt(topo.get('sliding_distance_m'))} m of sliding in {ri.get('checkpoints')} "
-            f"checkpoints ({ri.get('substeps')} Eq. 23 sub-steps, phi changing by at most the "
-            "stated tolerance per sub-step).",
-            f"- **Contact** at every checkpoint: {ri.get('contact_method')} "
-            f"({topo.get('contact_method_reason')}); "
-            f"real-contact fraction: {ri.get('phi_source')}.",
-            "- **Stiffness** of the apparent contact: interfacial stiffness per area x A in series "
-            f"with the bonded punch 2E*sqrt(A/pi) = {_fmt(ri.get('bound_N_m'))} N/m (the bound); "
-            f"{_fmt(k_n[0])} -> {_fmt(k_n[-1])} N/m.",
-            f"- **Friction**: mu_k = {_fmt(fr.get('mu_kinetic'))}, "
-            f"mu_s = {_fmt(fr.get('mu_static'))} "
-            f"({fr.get('source')}); matched at the {fr.get('pressure_source')} pressure "
-            f"{_fmt(fr.get('pressure_Pa'))} Pa{extra}.",
-        ]
-        conv = ri.get("convergence")
-        if conv:
-            n0, n1 = conv["checkpoints"]
-            out.append(
-                f"- **Convergence**: halving the checkpoint spacing ({n0} -> {n1}) changes "
-                f"the final Rq by {_fmt(conv['rq_final_rel_change'])} and the stiffness by "
-                f"{_fmt(conv['stiffness_final_rel_change'])} (relative)."
-            )
-    mac = res.get("macroscale", {}).get("values", {})
-    if mac:
-        out.append(
-            f"- **Rigid body**: contact stiffness {_fmt(mac.get('contact_stiffness_N_m'))} N/m "
-            f"({mac.get('contact_stiffness_source')}), bound "
-            f"{_fmt(mac.get('contact_stiffness_bound_N_m'))} N/m; {mac.get('n_slip_events')} slip "
-            f"events with mu_s = {_fmt(mac.get('mu_static'))}, "
-            f"mu_k = {_fmt(mac.get('mu_kinetic'))}; lowest velocity after the first slip "
-            f"{_fmt(mac.get('min_velocity_after_first_slip_m_s'))} m/s (above 0: no re-stick)."
-        )
-    tri = res.get("tribospectroscopy", {}).get("values", {})
-    if tri:
-        out.append(
-            f"- **Tribospectroscopy**: length {_fmt(tri.get('length_m'))} m from "
-            f"{tri.get('length_source')}; fitted on a simulated measurement with "
-            f"{_fmt(tri.get('measurement_noise_rel'))} relative noise: "
-            f"{_fmt(tri.get('fitted_length_m'))} m, 68 % interval "
-            f"{tri.get('fitted_length_interval_m')} ({tri.get('fit_message')})."
-        )
+    for stage in registry:
+        values = data["results"].get(stage.name, {}).get("values", {})
+        if values:
+            out += stage.summary(values)
     if not out:
         return []
     return ["", "## What ran, from which inputs, under which assumptions", "", *out]
 
 
-def _markdown(data: dict[str, Any]) -> str:
+def _markdown(data: dict[str, Any], registry) -> str:
     sc = data["scene"]
     lines = [
         f"# tribolmp run: {sc['name']}",
@@ -243,7 +178,7 @@ def _markdown(data: dict[str, Any]) -> str:
             f"| {r['name']} | {'yes' if r['ran'] else 'no'} ({status}) | {r['time_s']:.2f} "
             f"| {r['reason']} |"
         )
-    lines += _narrative(data)
+    lines += _narrative(data, registry)
     lines += ["", "## Results (SI units)", ""]
     for name, res in data["results"].items():
         lines += [f"### {name}", "", "| quantity | value | unit |", "|---|---|---|"]
@@ -251,7 +186,7 @@ def _markdown(data: dict[str, Any]) -> str:
         for k, v in res.get("values", {}).items():
             if isinstance(v, dict):
                 continue
-            lines.append(f"| {k} | {_fmt(v)} | {units.get(k, '')} |")
+            lines.append(f"| {k} | {fmt(v)} | {units.get(k, '')} |")
         files = data["handoffs"].get(name, {})
         if files:
             lines += ["", "Hand-off files: " + ", ".join(f"`{p}`" for p in files.values())]

@@ -28,6 +28,12 @@ A stage is one file under ``tribolmp/chain/stages/`` that defines a
     :func:`code_closure` see every dependency).
 ``figures``
     :class:`Figure` entries the report draws from the stage's hand-off files.
+``report_keys`` / ``summary(values)``
+    What the stage adds to the report: top-level ``report.json`` fields taken
+    from its values (``None`` when it did not run), and the lines it
+    contributes to ``report.md``'s "What ran, from which inputs, under which
+    assumptions" section.  The report composes them in registry order and
+    knows nothing stage-specific.
 
 The cache key of a stage covers the source of everything its file imports
 (:func:`code_closure`, computed from the import graph), the scene sections and
@@ -70,6 +76,7 @@ __all__ = [
     "stage_seed",
     "code_closure",
     "code_hash",
+    "fmt",
 ]
 
 PACKAGE_ROOT = Path(__file__).resolve().parents[1]
@@ -208,6 +215,28 @@ class Demand:
         return [o for o in outputs if o in self.outputs]
 
 
+def fmt(value: Any) -> str:
+    """Format a report value for markdown: floats to 4 significant digits, long lists shortened.
+
+    Parameters
+    ----------
+    value : any
+        A number, a list of numbers or anything with a ``str``.
+
+    Returns
+    -------
+    str
+        The text shown in ``report.md``.
+    """
+    if isinstance(value, float):
+        return f"{value:.4g}"
+    if isinstance(value, list) and len(value) > 8:
+        return f"[{len(value)} values: {fmt(value[0])} ... {fmt(value[-1])}]"
+    if isinstance(value, list):
+        return "[" + ", ".join(fmt(x) for x in value) + "]"
+    return str(value)
+
+
 class Stage:
     """Base class of a chain stage; see the module docstring for the contract.
 
@@ -222,6 +251,8 @@ class Stage:
     sections: ClassVar[tuple[str, ...]] = ()
     data: ClassVar[tuple[str, ...]] = ()
     figures: ClassVar[tuple[Figure, ...]] = ()
+    #: Top-level report.json fields this stage publishes (values of :meth:`report_fields`).
+    report_keys: ClassVar[tuple[str, ...]] = ()
 
     # -- to implement
 
@@ -245,6 +276,42 @@ class Stage:
         checked against the machine's memory, and costs are estimated.  Raise a
         :class:`~tribolmp.errors.SetupError` (one line naming the field) for a
         refusal; return one-line notes (cost estimates, doubtful choices).
+        """
+        return []
+
+    # -- what the stage adds to the report
+
+    def report_fields(self, values: Mapping[str, Any]) -> dict[str, Any]:
+        """Return the top-level report.json fields of this stage.
+
+        Parameters
+        ----------
+        values : mapping
+            The stage's result values (SI, as cached); empty when the stage
+            did not run.
+
+        Returns
+        -------
+        dict
+            One entry per name in :attr:`report_keys`; by default the value of
+            the same name (``None`` when absent).
+        """
+        return {key: values.get(key) for key in self.report_keys}
+
+    def summary(self, values: Mapping[str, Any]) -> list[str]:
+        """Return the stage's lines of the report's narrative (markdown bullets).
+
+        Parameters
+        ----------
+        values : mapping
+            The stage's result values (SI, as cached); the report calls this
+            only for a stage with results.
+
+        Returns
+        -------
+        list of str
+            Markdown lines saying what ran, from which inputs, under which
+            assumptions; empty (the default) when there is nothing to say.
         """
         return []
 

@@ -7,7 +7,7 @@ from typing import Any
 import numpy as np
 
 from ...models.friction import friction_coefficient
-from ..stage import Decision, Demand, Figure, Handoff, Stage, StageContext, StageOutput
+from ..stage import Decision, Demand, Figure, Handoff, Stage, StageContext, StageOutput, fmt
 from ._rates import mu_binding, nanoscale_rates
 
 
@@ -72,6 +72,18 @@ class Macroscale(Stage):
     def bind(self, scene, decision: Decision, supplied) -> Decision:
         """Say where mu comes from (and hash its section)."""
         return mu_binding(scene, decision, supplied)
+
+    def summary(self, values) -> list[str]:
+        """Say which contact stiffness and friction the rigid body slid with, and what it did."""
+        return [
+            f"- **Rigid body**: contact stiffness {fmt(values.get('contact_stiffness_N_m'))} N/m "
+            f"({values.get('contact_stiffness_source')}), bound "
+            f"{fmt(values.get('contact_stiffness_bound_N_m'))} N/m; "
+            f"{values.get('n_slip_events')} slip events with "
+            f"mu_s = {fmt(values.get('mu_static'))}, "
+            f"mu_k = {fmt(values.get('mu_kinetic'))}; lowest velocity after the first slip "
+            f"{fmt(values.get('min_velocity_after_first_slip_m_s'))} m/s (above 0: no re-stick)."
+        ]
 
     def run(self, ctx: StageContext) -> StageOutput:
         """Stick-slip of the rigid body pulled through a spring, on the contact, with the chain's mu."""

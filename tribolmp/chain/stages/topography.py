@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...jsonio import scalars
-from ..stage import Decision, Demand, Figure, Handoff, Stage, StageContext, StageOutput
+from ..stage import Decision, Demand, Figure, Handoff, Stage, StageContext, StageOutput, fmt
 from ._rates import upstream_rates
 
 
@@ -104,6 +104,8 @@ class Topography(Stage):
     consumes = ("rates",)
     outputs = ("topography",)
     sections = ("topography", "kinematics", "rates") + _RUNIN_SECTIONS
+    # Issue 15 contract: the running-in series of the part, at the top level of report.json.
+    report_keys = ("running_in",)
     figures = (
         Figure("psd", "psd", _draw_psd, "topography PSD (cf. Fig. 10)",
                "Power spectral density of the evolved topography against the Eq. 23 theory (cf. Fig. 10)"),
@@ -193,6 +195,54 @@ class Topography(Stage):
         # 5.0 grid arrays at 1024^2), plus the saved map and its PSD.
         check_memory(7 * 8 * float(n) ** dim, field, n, what, scene.source)
         return []
+
+    def summary(self, values) -> list[str]:
+        """Say where the running-in rates, surface, contact and friction came from (issue 15)."""
+        if "running_in" not in values:
+            return []
+        ri = values["running_in"]
+        fr = values.get("friction") or {}
+        eq = values.get("eq23_mca") or {}
+        warn = " ".join(values.get("eq23_warnings") or [])
+        k_n = ri["normal_stiffness_N_m"]
+        factor = ri["rate_factor"]
+        extra = f"; **extrapolated**: {fr.get('extrapolation')}" if fr.get("extrapolated") else ""
+        out = [
+            f"- **Rates** from {values.get('rates_source')}: Eq. 23 coefficients "
+            f"{values.get('eq23_source')} at the MCA's V = {fmt(eq.get('velocity_m_s'))} m/s, "
+            f"P = {fmt(eq.get('pressure_Pa'))} Pa (k1 = {fmt(eq.get('k1'))}, "
+            f"k2 = {fmt(eq.get('k2'))} 1/m). {warn}".rstrip(),
+            "- **At the part** every rate is multiplied by phi V_part / V_MCA (processes scale "
+            f"with the distance slid in contact; factor {fmt(factor[0])} at the start, "
+            f"{fmt(factor[-1])} at the end) and the noise intensities by the slab thickness "
+            f"w = {fmt(values.get('slab_thickness_m'))} m ({values.get('slab_thickness_source')}) "
+            "to go from the MCA's 1D profile to the 2D surface.",
+            f"- **Surface**: {values.get('surface_source')}, "
+            f"side {fmt(values.get('domain_size_m'))} m; "
+            f"Rq {fmt(values.get('rq_initial_m'))} -> {fmt(values.get('rq_final_m'))} m over "
+            f"{fmt(values.get('sliding_distance_m'))} m of sliding in {ri.get('checkpoints')} "
+            f"checkpoints ({ri.get('substeps')} Eq. 23 sub-steps, phi changing by at most the "
+            "stated tolerance per sub-step).",
+            f"- **Contact** at every checkpoint: {ri.get('contact_method')} "
+            f"({values.get('contact_method_reason')}); "
+            f"real-contact fraction: {ri.get('phi_source')}.",
+            "- **Stiffness** of the apparent contact: interfacial stiffness per area x A in series "
+            f"with the bonded punch 2E*sqrt(A/pi) = {fmt(ri.get('bound_N_m'))} N/m (the bound); "
+            f"{fmt(k_n[0])} -> {fmt(k_n[-1])} N/m.",
+            f"- **Friction**: mu_k = {fmt(fr.get('mu_kinetic'))}, "
+            f"mu_s = {fmt(fr.get('mu_static'))} "
+            f"({fr.get('source')}); matched at the {fr.get('pressure_source')} pressure "
+            f"{fmt(fr.get('pressure_Pa'))} Pa{extra}.",
+        ]
+        conv = ri.get("convergence")
+        if conv:
+            n0, n1 = conv["checkpoints"]
+            out.append(
+                f"- **Convergence**: halving the checkpoint spacing ({n0} -> {n1}) changes "
+                f"the final Rq by {fmt(conv['rq_final_rel_change'])} and the stiffness by "
+                f"{fmt(conv['stiffness_final_rel_change'])} (relative)."
+            )
+        return out
 
     def run(self, ctx: StageContext) -> StageOutput:
         """Eq. 23 with the upstream rates -> final height map (``surface.npy`` + sidecar JSON) and its PSD."""

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...models.friction import friction_coefficient
-from ..stage import Decision, Demand, Figure, Handoff, Stage, StageContext, StageOutput
+from ..stage import Decision, Demand, Figure, Handoff, Stage, StageContext, StageOutput, fmt
 from ._rates import mu_binding, nanoscale_rates
 
 
@@ -52,6 +52,16 @@ class Tribospectroscopy(Stage):
     def bind(self, scene, decision: Decision, supplied) -> Decision:
         """Say where mu comes from; hash ``[rates]`` (or ``[load]``) when that is the source."""
         return mu_binding(scene, decision, supplied)
+
+    def summary(self, values) -> list[str]:
+        """Say where the probe's length came from and how well the fit recovers it."""
+        return [
+            f"- **Tribospectroscopy**: length {fmt(values.get('length_m'))} m from "
+            f"{values.get('length_source')}; fitted on a simulated measurement with "
+            f"{fmt(values.get('measurement_noise_rel'))} relative noise: "
+            f"{fmt(values.get('fitted_length_m'))} m, 68 % interval "
+            f"{values.get('fitted_length_interval_m')} ({values.get('fit_message')})."
+        ]
 
     def run(self, ctx: StageContext) -> StageOutput:
         """F^2(a) of the oscillating two-contact probe with the chain's mu, and the fitted length."""
