@@ -134,60 +134,11 @@ def append_campaign(path: Path, new: dict) -> None:
 
 
 def nanoscale_table(campaign: Path, out: Path, *, description: str, law: str | None = None) -> dict:
-    """Write the table the chain interpolates: mu and Eq. 23 coefficients per (P, V), seeds combined.
+    """Write the table the chain interpolates (:func:`tribolmp.analysis.nanoscale_table.build_table`)."""
+    from tribolmp.analysis.nanoscale_table import build_table, write_table
 
-    Per (P, V): mu is the mean over seeds; its error the larger of the combined standard errors
-    sqrt(sum err^2)/n and the seed scatter std/sqrt(n) (when n > 1).  An Eq. 23 coefficient is given
-    only if valid in every seed (the same combination), else null with ``<c>_valid: false``.  With
-    ``law``, only that law's rows (a table never mixes laws).
-    """
-    import datetime as dt
-    import math
-
-    with campaign.open() as fh:
-        rows = [r for r in csv.DictReader(fh) if law is None or r.get("law") == law]
-    groups: dict[tuple[float, float], list[dict]] = {}
-    for r in rows:
-        if r.get("mu") in ("", None):
-            continue
-        groups.setdefault((float(r["pressure_Pa"]), float(r["sliding_velocity_m_s"])), []).append(r)
-
-    def combine(vals, errs):
-        n = len(vals)
-        mean = sum(vals) / n
-        se = math.sqrt(sum(e * e for e in errs)) / n
-        if n > 1:
-            sd = math.sqrt(sum((v - mean) ** 2 for v in vals) / (n - 1))
-            se = max(se, sd / math.sqrt(n))
-        return mean, se
-
-    table_rows = []
-    for (p, v), rs in sorted(groups.items()):
-        mu, mu_err = combine([float(r["mu"]) for r in rs], [float(r["mu_err"] or 0) for r in rs])
-        tr = {"pressure_Pa": p, "sliding_velocity_m_s": v, "mu": mu, "mu_err": mu_err, "n_runs": len(rs),
-              "seeds": sorted({int(r["seed"]) for r in rs}), "steady": all(r["mu_steady"] == "True" for r in rs),
-              "runs": [r["run"] for r in rs]}
-        for c in ("mu_per_s", "d0_m2_s", "dz", "dx_l2"):
-            ok = all(r.get(f"valid_{c}") == "True" and r.get(c) not in ("", None) for r in rs)
-            if ok:
-                tr[c], tr[f"{c}_err"] = combine([float(r[c]) for r in rs], [float(r[f"{c}_err"]) for r in rs])
-            else:
-                tr[c], tr[f"{c}_err"] = None, None
-            tr[f"{c}_valid"] = ok
-        table_rows.append(tr)
-    laws = sorted({r.get("law") or "?" for r in rows})
-    table = {
-        "rows": table_rows,
-        "units": {"pressure_Pa": "Pa", "sliding_velocity_m_s": "m/s", "mu": "1", "mu_err": "1",
-                  "mu_per_s": "1/s", "d0_m2_s": "m^2/s", "dz": "m^3/s", "dx_l2": "m^5/s"},
-        "provenance": {
-            "source": str(campaign), "description": description, "laws": laws,
-            "dims": sorted({r.get("dim") for r in rows}), "created_utc": dt.datetime.now(dt.timezone.utc)
-            .isoformat(timespec="seconds"), "workflow": "workflows/mca_friction_sweep.py",
-            "combination": "mean over seeds; error max(sqrt(sum err^2)/n, std/sqrt(n)); Eq. 23 only if valid in all",
-        },
-    }
-    out.write_text(json.dumps(table, indent=1) + "\n")
+    table = build_table(campaign, law=law or "mca", description=description)
+    write_table(table, out)
     return table
 
 

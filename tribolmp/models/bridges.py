@@ -48,6 +48,7 @@ __all__ = [
     "punch_bound",
     "rates_at_part",
     "rms_gradient",
+    "table_at_part",
 ]
 
 #: Eq. 23 coefficients of the 1D profile measured by the analysis (contract C1), with units.
@@ -96,7 +97,12 @@ def _as_mapping(rates: Any) -> Mapping[str, Any]:
     return rates
 
 
-def eq23_from_rates(rates: Any, *, fallback: Mapping[str, Any] | None = None) -> Result:
+def eq23_from_rates(
+    rates: Any,
+    *,
+    fallback: Mapping[str, Any] | None = None,
+    table: Mapping[str, Any] | None = None,
+) -> Result:
     """Eq. 23 coefficients of the MCA's 1D surface profile, at the MCA's conditions.
 
     Each coefficient (``mu``, ``D0``, ``Dz``, ``Dx l^2``) comes from the first
@@ -124,7 +130,11 @@ def eq23_from_rates(rates: Any, *, fallback: Mapping[str, Any] | None = None) ->
        fixed by that identity (plateau ratio 2, ``k2 = k1 / sqrt 2``, no
        ``k^-2`` range); ``shape_fixed_by_identity`` is then True and a warning
        says so.  Only the C1 coefficients measure the shape.
-    3. ``fallback``: coefficients in the C1 names and units given by the
+    3. ``table``: coefficients in the C1 names and units interpolated from
+       the shipped nanoscale table at the part's condition
+       (:func:`table_at_part`, already moved to the velocity these rates
+       were measured at), with ``table["source"]`` naming them;
+    4. ``fallback``: coefficients in the C1 names and units given by the
        caller (e.g. the scene's ``[topography]`` values, an assumption the
        report states), with ``fallback["source"]`` naming them.
 
@@ -139,8 +149,9 @@ def eq23_from_rates(rates: Any, *, fallback: Mapping[str, Any] | None = None) ->
     rates : Rates or mapping
         The :class:`~tribolmp.records.Rates` record, ``rates.json`` content or ``[rates]`` as a
         dict.
-    fallback : mapping, optional
-        ``mu_per_s``, ``d0_m2_s``, ``dz``, ``dx_l2`` (C1 units) and ``source`` (str).
+    fallback, table : mapping, optional
+        ``mu_per_s``, ``d0_m2_s``, ``dz``, ``dx_l2`` (C1 units, any may be
+        missing or None) and ``source`` (str).
 
     Returns
     -------
@@ -187,14 +198,13 @@ def eq23_from_rates(rates: Any, *, fallback: Mapping[str, Any] | None = None) ->
     wear = _num(rates, "wear_rate")
     if "mu" not in val and wear is not None:
         val["mu"], src["mu"] = wear, "legacy wear_rate"
-    # The scene's stated values for whatever is still missing.
-    if fallback is not None:
+    # The shipped table, then the scene's stated values, for whatever is still missing.
+    for extra in (table, fallback):
+        if extra is None:
+            continue
         for key, short in names.items():
-            if short not in val and fallback.get(key) is not None:
-                val[short], src[short] = (
-                    float(fallback[key]),
-                    str(fallback.get("source", "fallback")),
-                )
+            if short not in val and extra.get(key) is not None:
+                val[short], src[short] = float(extra[key]), str(extra.get("source", "fallback"))
     missing = [k for k, s in names.items() if s not in val]
     if "dz" in missing and transfer is not None and velocity is None:
         raise ParameterError(
@@ -527,6 +537,82 @@ def load_nanoscale_table(path: str | Path) -> list[dict[str, Any]]:
     return out
 
 
+def table_at_part(
+    rows: Sequence[Mapping[str, Any]],
+    field: str,
+    *,
+    pressure_Pa: float,
+    velocity_m_s: float,
+    log_values: bool = False,
+) -> Result | None:
+    """Interpolate one field of the nanoscale table at the part's condition (None: never measured).
+
+    The rule of :func:`friction_at_part`, for any field: only the rows that
+    measured it (value not null, ``<field>_valid`` not False); of those, the
+    rows at the velocity closest to the part's in ``log V``; linear in
+    ``log p`` between them (in ``log value`` too with ``log_values``, for the
+    Eq. 23 rates that span decades; a zero then falls back to linear values),
+    the nearest row outside their pressure range.  ``extrapolated`` is True
+    when the pressure lies outside that range by more than 10 % or the
+    velocity differs from the matched one by more than a factor 2.
+
+    Returns
+    -------
+    Result or None
+        ``value``, ``err`` (interpolated the same way, None if the rows give none),
+        ``velocity_m_s`` (the matched rows' velocity), ``pressure_range_Pa``,
+        ``extrapolated``, ``extrapolation`` (text), ``rows`` (number used).
+    """
+    if not (pressure_Pa > 0 and velocity_m_s > 0):
+        raise ParameterError(
+            "pressure, velocity",
+            "a matching pressure > 0 Pa and a velocity > 0 m/s",
+            (pressure_Pa, velocity_m_s),
+        )
+    use = [
+        r for r in rows
+        if r.get(field) is not None and r.get(f"{field}_valid", True) is not False
+    ]
+    if not use:
+        return None
+    V = np.array([float(r["sliding_velocity_m_s"]) for r in use])
+    v_near = V[np.argmin(np.abs(np.log(V / velocity_m_s)))]
+    sel = [r for r, v in zip(use, V) if math.isclose(v, v_near, rel_tol=1e-6)]
+    sel.sort(key=lambda r: float(r["pressure_Pa"]))
+    lp = np.log([float(r["pressure_Pa"]) for r in sel])
+    vals = np.array([float(r[field]) for r in sel])
+    errs = [r.get(f"{field}_err") for r in sel]
+    x = math.log(pressure_Pa)
+    logv = log_values and bool(np.all(vals > 0))
+    value = float(np.exp(np.interp(x, lp, np.log(vals))) if logv else np.interp(x, lp, vals))
+    err = None
+    if all(e is not None for e in errs):
+        e = np.array(errs, float)
+        # relative errors interpolate like the values on a log scale
+        err = float(np.interp(x, lp, e / vals) * value) if logv else float(np.interp(x, lp, e))
+    p_lo, p_hi = float(np.exp(lp[0])), float(np.exp(lp[-1]))
+    p_out = pressure_Pa < p_lo / 1.1 or pressure_Pa > p_hi * 1.1
+    v_out = abs(math.log(v_near / velocity_m_s)) > math.log(2.0)
+    why = []
+    if p_out:
+        why.append(
+            f"pressure {pressure_Pa:.3g} Pa outside the measured [{p_lo:.3g}, {p_hi:.3g}] Pa"
+        )
+    if v_out:
+        why.append(f"velocity {velocity_m_s:g} m/s vs measured {v_near:g} m/s")
+    return Result(
+        value=value,
+        err=err,
+        velocity_m_s=float(v_near),
+        pressure_range_Pa=[p_lo, p_hi],
+        extrapolated=bool(p_out or v_out),
+        extrapolation="; ".join(why),
+        rows=len(sel),
+        method="nearest-velocity, log-pressure interpolation",
+        message=f"{field} from {len(sel)} row(s) at {v_near:g} m/s",
+    )
+
+
 def friction_at_part(
     rows: Sequence[Mapping[str, Any]],
     *,
@@ -536,6 +622,7 @@ def friction_at_part(
     mu_kinetic: float | None = None,
     static_ratio: float = 1.0,
     pressure_source: str = "nominal",
+    table: Sequence[Mapping[str, Any]] | None = None,
 ) -> Result:
     """Friction coefficients at the MCA condition that matches the part's.
 
@@ -554,7 +641,9 @@ def friction_at_part(
     * kinetic coefficient: ``mu_kinetic`` when given (the scene's), else the
       interpolated ``mu``; with rows at several velocities at the matched
       pressure a velocity-dependent table ``mu_k(v)`` is returned as well;
-    * static coefficient: ``mu_static`` when given, else
+    * static coefficient: ``mu_static`` when given, else the measured ratio
+      ``mu_static / mu_kinetic`` of the nanoscale ``table`` (rows that carry
+      both, interpolated by :func:`table_at_part`) times ``mu_k``, else
       ``static_ratio * mu_k`` (the scene's stated assumption; ratio 1 = no
       static excess = no stick-slip from the data), never below ``mu_k``.
 
@@ -570,6 +659,9 @@ def friction_at_part(
         ``mu_s / mu_k`` when ``mu_static`` is not given, >= 1.
     pressure_source : {"nominal", "real"}
         Recorded in the result.
+    table : sequence of mapping, optional
+        The nanoscale table's rows, read for a measured ``mu_static`` /
+        ``mu_kinetic`` (``rows`` may be the table itself or one measured condition).
 
     Returns
     -------
@@ -609,6 +701,16 @@ def friction_at_part(
         ov = np.argsort(V[at_p])
         vt = ([float(x) for x in V[at_p][ov]], [float(x) for x in M[at_p][ov]])
     mu_k = float(mu_kinetic) if mu_kinetic is not None else mu
+    ratio_src = f"{static_ratio:g} x mu_k (scene [running_in].static_ratio)"
+    if mu_static is None and table:
+        ts = table_at_part(table, "mu_static", pressure_Pa=pressure_Pa, velocity_m_s=velocity_m_s)
+        tk = table_at_part(table, "mu_kinetic", pressure_Pa=pressure_Pa, velocity_m_s=velocity_m_s)
+        if ts is not None and tk is not None and tk.value > 0:
+            static_ratio = max(1.0, ts.value / tk.value)
+            ratio_src = (
+                f"{static_ratio:.3g} x mu_k (measured mu_s/mu_k of the nanoscale table at "
+                f"{tk.velocity_m_s:g} m/s" + (", extrapolated)" if ts.extrapolated else ")")
+            )
     mu_s = float(mu_static) if mu_static is not None else static_ratio * mu_k
     if mu_s < mu_k:
         raise ParameterError(
@@ -627,11 +729,7 @@ def friction_at_part(
         if mu_kinetic is not None
         else f"MCA at {v_near:g} m/s, interpolated in log p"
     )
-    src_s = (
-        "scene [running_in].mu_static"
-        if mu_static is not None
-        else f"{static_ratio:g} x mu_k (scene [running_in].static_ratio)"
-    )
+    src_s = "scene [running_in].mu_static" if mu_static is not None else ratio_src
     return Result(
         mu=mu,
         mu_kinetic=mu_k,

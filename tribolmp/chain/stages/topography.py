@@ -103,6 +103,8 @@ class Topography(Stage):
     )
     consumes = ("rates",)
     outputs = ("topography",)
+    # The running-in reads the shipped nanoscale table: a rebuilt table invalidates cached results.
+    data = ("data/nanoscale_table.json",)
     sections = ("topography", "kinematics", "rates") + _RUNIN_SECTIONS
     # Issue 15 contract: the running-in series of the part, at the top level of report.json.
     report_keys = ("running_in",)
@@ -282,6 +284,112 @@ def _fallback_from_topography(scene, slab: float) -> dict:
     return topography_fallback(scene.topography or TopoSection(), slab)
 
 
+def _eq23_from_table(table, pressure: float, velocity: float, v_ref) -> tuple[dict | None, dict]:
+    """Return the table's Eq. 23 coefficients at the part's condition, in C1 units at ``v_ref``.
+
+    Each coefficient is interpolated by :func:`tribolmp.models.bridges.table_at_part` (rows that
+    measured it validly, nearest velocity, log p and log value) and moved from its row's velocity to
+    ``v_ref`` (the velocity of the rates they complete) per sliding distance, the same assumption as
+    ``rates_at_part``.  Returns ``(mapping for eq23_from_rates or None, {coefficient: lookup}})``.
+    """
+    from ...models import bridges
+
+    if not table:
+        return None, {}
+    out, hits = {}, {}
+    for key in ("mu_per_s", "d0_m2_s", "dz", "dx_l2"):
+        t = bridges.table_at_part(table, key, pressure_Pa=pressure, velocity_m_s=velocity, log_values=True)
+        if t is None:
+            continue
+        scale = float(v_ref) / t.velocity_m_s if v_ref else 1.0
+        out[key] = t.value * scale
+        hits[key] = {"value_at_table_velocity": t.value, "table_velocity_m_s": t.velocity_m_s,
+                     "extrapolated": t.extrapolated, "extrapolation": t.extrapolation}
+    if not out:
+        return None, {}
+    out["source"] = "nanoscale table (tribolmp/data/nanoscale_table.json)"
+    return out, hits
+
+
+def _coefficient_provenance(eq, rates_tier: str, table_hits: dict, fr, mu_tier: str, ri, rates) -> dict:
+    """Say, per coefficient, which tier of the precedence gave it (report.json provenance)."""
+    out = {}
+    for key, short in (("mu_per_s", "mu"), ("d0_m2_s", "d0"), ("dz", "dz"), ("dx_l2", "dx_l2")):
+        src = eq.sources[short]
+        tier = ("nanoscale table" if src.startswith("nanoscale table")
+                else "[topography] fallback" if src.startswith("[topography]") else rates_tier)
+        row = {"tier": tier, "source": src, "value": eq[short]}
+        if tier == "nanoscale table":
+            row.update(table_hits.get(key, {}))
+        out[key] = row
+    src_k, _, src_s = str(fr["source"]).partition("; mu_s: ")
+    k_tier = ("scene [running_in].mu_kinetic" if ri.mu_kinetic is not None
+              else rates_tier + " (mu_kinetic)" if rates.mu_kinetic is not None else mu_tier)
+    out["mu_kinetic"] = {"tier": k_tier, "source": src_k.removeprefix("mu_k: "), "value": fr["mu_kinetic"],
+                         "extrapolated": fr["extrapolated"], "extrapolation": fr["extrapolation"]}
+    s_tier = ("scene [running_in].mu_static" if ri.mu_static is not None
+              else rates_tier + " (mu_static)" if rates.mu_static is not None
+              else "nanoscale table (mu_s/mu_k)" if "nanoscale table" in src_s
+              else "scene [running_in].static_ratio (stated assumption)")
+    out["mu_static"] = {"tier": s_tier, "source": src_s, "value": fr["mu_static"]}
+    return out
+
+
+def part_coefficients(scene, rates, rates_src: str, table, h0, dx: float, params, slab: float):
+    """Choose every coefficient of the running-in at the part, by the precedence of issue 15.
+
+    Per coefficient: the scene's ``[rates]`` (``rates_src == "[rates]"``) > this run's valid
+    measurement (the nanoscale ``rates.json``; a C1 coefficient marked not valid or null is not one)
+    > the shipped nanoscale ``table`` at the part's condition (nominal pressure, or the mean
+    real-contact pressure ``p/phi`` with ``phi`` estimated on ``h0``, as ``[running_in]`` says) > the
+    ``[topography]`` values.  mu_k: ``[running_in].mu_kinetic`` > the rates' mu > the table > ``[load]``;
+    mu_s: ``[running_in].mu_static`` > the rates' > the table's measured mu_s/mu_k x mu_k > the stated
+    ``static_ratio``.
+
+    Returns
+    -------
+    eq : Result (:func:`~tribolmp.models.bridges.eq23_from_rates`), friction : callable phi -> Result,
+    provenance : callable friction Result -> {coefficient: {tier, source, value, ...}}, fr_src : str
+    """
+    from ...models import bridges
+    from ...scene.schema import RunningIn
+
+    ri = scene.running_in or RunningIn()
+    rates_tier = "scene [rates]" if rates_src == "[rates]" else "measured by this run (nanoscale rates.json)"
+    v_part = max(params.sliding_velocity, 1e-300)
+    # The part's matching pressure: nominal, or the mean real-contact pressure p/phi with phi estimated
+    # from the initial surface (the Eq. 23 coefficients are taken once, before the loop).
+    phi0 = bridges.contact_fraction_estimate(params.pressure, params.E_star, bridges.rms_gradient(h0, dx))
+    p_match = params.pressure if ri.friction_pressure == "nominal" else params.pressure / max(phi0, 1e-300)
+    eq23_table, table_hits = _eq23_from_table(table, p_match, v_part, rates.sliding_velocity_m_s)
+    eq = bridges.eq23_from_rates(rates, table=eq23_table, fallback=_fallback_from_topography(scene, slab))
+    rates_mu = rates.mu if rates.mu is not None and "mu" not in rates.flagged else None
+    if rates_mu is not None:
+        rows = [{"pressure_Pa": eq.pressure_Pa or params.pressure, "sliding_velocity_m_s": eq.velocity_m_s,
+                 "mu": float(rates_mu)}]
+        fr_src, mu_tier = rates_src, rates_tier
+    elif table is not None:
+        rows, fr_src, mu_tier = table, "tribolmp/data/nanoscale_table.json", "nanoscale table"
+    else:
+        rows = [{"pressure_Pa": eq.pressure_Pa or params.pressure, "sliding_velocity_m_s": eq.velocity_m_s or v_part,
+                 "mu": float(scene.load.friction_coefficient)}]
+        fr_src, mu_tier = "[load].friction_coefficient (no measured mu)", "[load].friction_coefficient"
+    mu_s_given = ri.mu_static if ri.mu_static is not None else rates.mu_static
+    mu_k_given = ri.mu_kinetic if ri.mu_kinetic is not None else rates.mu_kinetic
+
+    def friction(phi: float):
+        p = params.pressure if ri.friction_pressure == "nominal" else params.pressure / max(phi, 1e-300)
+        return bridges.friction_at_part(rows, pressure_Pa=p, velocity_m_s=v_part,
+                                        mu_static=mu_s_given, mu_kinetic=mu_k_given,
+                                        static_ratio=ri.static_ratio, pressure_source=ri.friction_pressure,
+                                        table=table)
+
+    def provenance(fr) -> dict:
+        return _coefficient_provenance(eq, rates_tier, table_hits, fr, mu_tier, ri, rates)
+
+    return eq, friction, provenance, fr_src
+
+
 def _running_in(ctx: StageContext) -> StageOutput:
     """Run in the part's [roughness] surface by Eq. 23, coupled to the contact (issue 15)."""
     from ...environment import data_path
@@ -306,7 +414,6 @@ def _running_in(ctx: StageContext) -> StageOutput:
         slab, slab_src = rates.step_length_m, "step_length_m (one automaton)"
     else:
         raise ValueError("rates: slab_thickness_m, automaton_diameter_m or step_length_m is needed for the 2D surface")
-    eq = bridges.eq23_from_rates(rates, fallback=_fallback_from_topography(scene, float(slab)))
     method = ctx.plan.options.get("contact_method", "mdr")
     rough = scene.roughness
     surf_rng, noise_rng = ctx.rng.spawn(2)
@@ -324,22 +431,9 @@ def _running_in(ctx: StageContext) -> StageOutput:
         normal_force=scene.load.normal_force, apparent_area=area, E_star=scene.effective_modulus,
         checkpoints=ri.checkpoints, slab_thickness=float(slab), contact_method=method,
         realizations=rough.realizations, contact_seed=seed, phi_tolerance=ri.phi_tolerance)
-    # Friction at the part: the shipped nanoscale table when present, else the one measured condition.
     table_path = data_path("nanoscale_table.json")
-    if table_path.is_file():
-        rows, fr_src = bridges.load_nanoscale_table(table_path), "tribolmp/data/nanoscale_table.json"
-    else:
-        mu0 = rates.mu if rates.mu is not None else scene.load.friction_coefficient
-        rows = [{"pressure_Pa": eq.pressure_Pa or params.pressure, "sliding_velocity_m_s": eq.velocity_m_s, "mu": float(mu0)}]
-        fr_src = rates_src if rates.mu is not None else "[load].friction_coefficient (no measured mu)"
-    mu_s_given = ri.mu_static if ri.mu_static is not None else rates.mu_static
-    mu_k_given = ri.mu_kinetic if ri.mu_kinetic is not None else rates.mu_kinetic
-
-    def friction(phi: float):
-        p = params.pressure if ri.friction_pressure == "nominal" else params.pressure / max(phi, 1e-300)
-        return bridges.friction_at_part(rows, pressure_Pa=p, velocity_m_s=max(params.sliding_velocity, 1e-300),
-                                        mu_static=mu_s_given, mu_kinetic=mu_k_given,
-                                        static_ratio=ri.static_ratio, pressure_source=ri.friction_pressure)
+    table = bridges.load_nanoscale_table(table_path) if table_path.is_file() else None
+    eq, friction, provenance, fr_src = part_coefficients(scene, rates, rates_src, table, h0, dx, params, float(slab))
 
     res = runin.running_in(h0, dx, eq, params, rng=noise_rng, mu_of_phi=lambda phi: friction(phi)["mu_kinetic"])
     ctx.progress(0.5, "running-in done; convergence check" if ri.convergence_check else "running-in done")
@@ -381,6 +475,7 @@ def _running_in(ctx: StageContext) -> StageOutput:
         "friction": jsonable({k: fr[k] for k in ("mu", "mu_kinetic", "mu_static", "extrapolated", "extrapolation",
                                                  "pressure_Pa", "pressure_source", "source", "velocity_table")}),
         "friction_table_source": fr_src,
+        "coefficient_provenance": jsonable(provenance(fr)),
         "running_in": running,
     }
     units = {"domain_size_m": "m", "pixel_size_m": "m", "rq_initial_m": "m", "rq_final_m": "m", "rq": "m",
@@ -391,7 +486,7 @@ def _running_in(ctx: StageContext) -> StageOutput:
     if (w / "rates.json").exists():
         files["rates"] = "rates.json"
     return StageOutput(values=values, units=units, files=files, method=res.method, message=res.message,
-                       nit=int(res.substeps))
+                       nit=int(res.substeps), provenance={"coefficients": values["coefficient_provenance"]})
 
 
 STAGE = Topography()
