@@ -77,9 +77,7 @@ def _rank_pids(out: Path) -> list[int]:
 def test_two_ranks_killed_and_resumed(cli, tmp_path, lammps_available):
     from tribolmp.analysis.stats import block_standard_error
 
-    # the bpm law: the mca law refuses several ranks in this release
-    args = ("mca", "run", "--preset", "smoke", "--time", "1e-9", "--seed", "5",
-            "--bond-style", "bpm/spring/plastic")
+    args = ("mca", "run", "--preset", "smoke", "--time", "1e-9", "--seed", "5")
     ref = tmp_path / "ref"
     done = cli(*args, "--out", ref, timeout=600)
     assert done.returncode == 0, done.stderr

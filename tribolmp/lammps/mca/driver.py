@@ -92,12 +92,6 @@ def run_mca(
     seed = check_int("seed", seed, 0, 2**63 - 1)
     overrides = dict(overrides or {})
     out = Path(out_dir).resolve()
-    if np_ > 1 and params.bond_style == "mca":
-        # A known bug of this release: friction runs of the mca plugin on several ranks end in a
-        # segmentation fault after a few nanoseconds (short material tests on 2 ranks pass).
-        # Refuse up front rather than crash mid-run; the bpm laws run on any number of ranks.
-        raise ParameterError("np", "1 rank for bond_style 'mca' (several ranks crash in this "
-                             "release; use bond_style 'bpm/spring/plastic' for MPI runs)", np_)
     t0 = time.perf_counter()
     meta = resumable_meta(out, _expected(params, seed, overrides)) if resume else None
     discarded: list[str] = []

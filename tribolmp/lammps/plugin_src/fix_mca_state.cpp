@@ -5,6 +5,7 @@
 #include "fix_mca_state.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "domain.h"
 #include "error.h"
 #include "memory.h"
@@ -67,6 +68,8 @@ void FixMCAState::init() {}
 
 void FixMCAState::write_restart(FILE *fp)
 {
+  // called on every rank, but only rank 0 holds the open file (fp is null elsewhere)
+  if (comm->me != 0) return;
   double list[3] = {(double) initialized, last_commit, (double) maxpartner};
   int size = 3 * sizeof(double);
   fwrite(&size, sizeof(int), 1, fp);

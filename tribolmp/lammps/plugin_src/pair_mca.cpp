@@ -54,7 +54,7 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   manybody_flag = 1;
   no_virial_fdotr_compute = 1;
   finitecutflag = 1;
-  comm_forward = 8;
+  comm_forward = 14;
   nextra = NTALLY;
   pvector = new double[NTALLY];
   for (int k = 0; k < NTALLY; k++) pvector[k] = 0.0;
@@ -64,6 +64,9 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   maxflat = 0;
   sacc = nullptr;
   maxsacc = 0;
+  xo = nullptr;
+  gimg = nullptr;
+  maxxo = 0;
 }
 
 PairMCA::~PairMCA()
@@ -73,6 +76,8 @@ PairMCA::~PairMCA()
   memory->destroy(mirrorflat);
   memory->destroy(cacheoff);
   memory->destroy(sacc);
+  memory->destroy(xo);
+  memory->destroy(gimg);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -292,6 +297,69 @@ void PairMCA::rebuild_cache()
   delete[] seen;
 }
 
+/* ----------------------------------------------------------------------
+   periodic images.  A pair with a ghost partner is evaluated on the ranks of
+   both partners, and both copies of its state must evolve bit for bit alike
+   (a link that breaks on one rank only would leave a one-sided state).  A
+   ghost that is a periodic image holds x_owner + shift, rounded, so x_b - x_a
+   differs in the last bits between the two ranks.  Each ghost's image is
+   therefore kept as integers (fixed between reneighbourings), and the pair's
+   geometry is computed from the owners' coordinates plus the integer lattice
+   vector, with the same operations on every rank.
+------------------------------------------------------------------------- */
+
+void PairMCA::image_shifts()
+{
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  double **x = atom->x;
+  const double *hi = domain->h_inv;
+  for (int i = 0; i < nlocal; i++) gimg[i][0] = gimg[i][1] = gimg[i][2] = 0;
+  for (int i = nlocal; i < nall; i++) {
+    const double d[3] = {x[i][0] - xo[i][0], x[i][1] - xo[i][1], x[i][2] - xo[i][2]};
+    if (domain->triclinic) {
+      gimg[i][0] = static_cast<int>(std::lround(hi[0] * d[0] + hi[5] * d[1] + hi[4] * d[2]));
+      gimg[i][1] = static_cast<int>(std::lround(hi[1] * d[1] + hi[3] * d[2]));
+      gimg[i][2] = static_cast<int>(std::lround(hi[2] * d[2]));
+    } else {
+      gimg[i][0] = static_cast<int>(std::lround(d[0] / domain->xprd));
+      gimg[i][1] = static_cast<int>(std::lround(d[1] / domain->yprd));
+      gimg[i][2] = static_cast<int>(std::lround(d[2] / domain->zprd));
+    }
+  }
+}
+
+void PairMCA::canonical_geometry(int a, int b, const int *jimg, bool i_is_a, double *R, double *Va,
+                                 double *Vb)
+{
+  double **x = atom->x, **v = atom->v;
+  if ((jimg[0] | jimg[1] | jimg[2]) == 0) {
+    // local partner or a plain copy of a remote atom: both ranks hold the same numbers
+    for (int c = 0; c < 3; c++) {
+      R[c] = x[b][c] - x[a][c];
+      Va[c] = v[a][c];
+      Vb[c] = v[b][c];
+    }
+    return;
+  }
+  // image of b relative to a (j is the ghost: b's image if i is a, else minus a's)
+  const double n0 = i_is_a ? jimg[0] : -jimg[0], n1 = i_is_a ? jimg[1] : -jimg[1],
+               n2 = i_is_a ? jimg[2] : -jimg[2];
+  const double *h = domain->h;
+  const double sh[3] = {n0 * h[0] + n1 * h[5] + n2 * h[4], n1 * h[1] + n2 * h[3], n2 * h[2]};
+  for (int c = 0; c < 3; c++) {
+    R[c] = (xo[b][c] - xo[a][c]) + sh[c];
+    Va[c] = xo[a][3 + c];
+    Vb[c] = xo[b][3 + c];
+  }
+  if (domain->deform_vremap) {
+    // fix deform remap v: an image moves with the box's rate of deformation
+    const double *hr = domain->h_rate;
+    Vb[0] += n0 * hr[0] + n1 * hr[5] + n2 * hr[4];
+    Vb[1] += n1 * hr[1] + n2 * hr[3];
+    Vb[2] += n2 * hr[2];
+  }
+}
+
 /* ---------------------------------------------------------------------- */
 
 void PairMCA::compute(int eflag, int vflag)
@@ -310,8 +378,23 @@ void PairMCA::compute(int eflag, int vflag)
   const bool advance = (double) update->ntimestep > fix->last_commit;
   const bool init_links = advance && !fix->initialized && link_init != 0;
 
+  if (atom->nmax > maxxo) {
+    maxxo = atom->nmax;
+    memory->destroy(xo);
+    memory->destroy(gimg);
+    memory->create(xo, maxxo, 6, "pair:mca:xo");
+    memory->create(gimg, maxxo, 3, "pair:mca:gimg");
+  }
+  for (int i = 0; i < nlocal; i++)
+    for (int c = 0; c < 3; c++) {
+      xo[i][c] = x[i][c];
+      xo[i][3 + c] = v[i][c];
+    }
   comm->forward_comm(this);
-  if (neighbor->ago == 0 || cacheoff == nullptr) rebuild_cache();
+  if (neighbor->ago == 0 || cacheoff == nullptr) {
+    image_shifts();
+    rebuild_cache();
+  }
 
   if (nlocal > maxsacc) {
     maxsacc = atom->nmax;
@@ -343,8 +426,15 @@ void PairMCA::compute(int eflag, int vflag)
       const bool jlocal = j < nlocal;
       if (jlocal && jtag < itag) continue;
       const double dbar = radius[i] + radius[j];
-      double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
-      const double rsq = dx * dx + dy * dy + dz * dz;
+      const bool i_is_a = itag < jtag;
+      const double sg = i_is_a ? 1.0 : -1.0;
+      const int a = i_is_a ? i : j, b = i_is_a ? j : i;
+      // canonical relative position a -> b and velocities, bit-identical on every rank that
+      // evaluates the pair (canonical_geometry)
+      double R[3], Va[3], Vb[3];
+      canonical_geometry(a, b, gimg[j], i_is_a, R, Va, Vb);
+      const double dx = sg * R[0], dy = sg * R[1], dz = sg * R[2];
+      const double rsq = R[0] * R[0] + R[1] * R[1] + R[2] * R[2];
       int k = cache_i[jj];
       const bool same_body = !mol || mol[i] == mol[j];
       if (k < 0) {
@@ -358,21 +448,21 @@ void PairMCA::compute(int eflag, int vflag)
           mirror_i[jj] = (kj >= 0) ? kj : new_slot(j, itag);
         }
         double *s = fix->slot(i, k);
-        const double sg = (itag < jtag) ? 1.0 : -1.0;
         s[FS::S_KIND] = mklink ? ikind : FS::CONTACT;
-        s[FS::S_RP + 0] = sg * dx;
-        s[FS::S_RP + 1] = sg * dy;
-        s[FS::S_RP + 2] = sg * dz;
+        s[FS::S_RP + 0] = R[0];
+        s[FS::S_RP + 1] = R[1];
+        s[FS::S_RP + 2] = R[2];
         // an initial link is stress-free at its current length
         if (mklink) s[FS::S_PN] = (std::sqrt(rsq) - dbar) / dbar;
       }
       double *s = fix->slot(i, k);
+      if (jlocal && mirror_i[jj] < 0) {
+        // j lost its copy (it held the pair as a ghost partner elsewhere): i's copy, which
+        // was evaluated, is the state; j gets it back at the end of this pair
+        const int kj = find_slot(j, itag);
+        mirror_i[jj] = (kj >= 0) ? kj : new_slot(j, itag);
+      }
       double *sj = jlocal ? fix->slot(j, mirror_i[jj]) : nullptr;
-      const bool i_is_a = itag < jtag;
-      const double sg = i_is_a ? 1.0 : -1.0;
-      const int a = i_is_a ? i : j, b = i_is_a ? j : i;
-      // canonical relative position, a -> b
-      const double R[3] = {sg * dx, sg * dy, sg * dz};
       const double r = std::sqrt(rsq);
       const double ir = 1.0 / r;
       const double n[3] = {R[0] * ir, R[1] * ir, R[2] * ir};
@@ -395,8 +485,7 @@ void PairMCA::compute(int eflag, int vflag)
       const double wxn[3] = {ws[1] * n[2] - ws[2] * n[1], ws[2] * n[0] - ws[0] * n[2],
                              ws[0] * n[1] - ws[1] * n[0]};
       // velocity of b's contact point relative to a's
-      const double vrel[3] = {v[b][0] - v[a][0] - wxn[0], v[b][1] - v[a][1] - wxn[1],
-                              v[b][2] - v[a][2] - wxn[2]};
+      const double vrel[3] = {Vb[0] - Va[0] - wxn[0], Vb[1] - Va[1] - wxn[1], Vb[2] - Va[2] - wxn[2]};
       double *xi = &s[FS::S_XI];
 
       if (advance) {
@@ -647,6 +736,7 @@ int PairMCA::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, 
     buf[m++] = am[FS::A_X];
     buf[m++] = am[FS::A_XU];
     for (int c = 0; c < 6; c++) buf[m++] = am[FS::A_DEP + c];
+    for (int c = 0; c < 6; c++) buf[m++] = xo[list[q]][c];
   }
   return m;
 }
@@ -659,6 +749,7 @@ void PairMCA::unpack_forward_comm(int n, int first, double *buf)
     am[FS::A_X] = buf[m++];
     am[FS::A_XU] = buf[m++];
     for (int c = 0; c < 6; c++) am[FS::A_DEP + c] = buf[m++];
+    for (int c = 0; c < 6; c++) xo[i][c] = buf[m++];
   }
 }
 

@@ -64,10 +64,16 @@ class PairMCA : public Pair {
   double **sacc;        // Love-Weber sums and link counts of local atoms
   int maxsacc;
   int coeffset;
+  double **xo;          // owner coordinates and velocities (x, v) of local and ghost atoms
+  int **gimg;           // periodic image (integers) of each ghost relative to its owner
+  int maxxo;
 
   void allocate();
   void ensure_fix();
   void rebuild_cache();
+  void image_shifts();
+  void canonical_geometry(int a, int b, const int *jimg, bool i_is_a, double *R, double *Va,
+                          double *Vb);
   int find_slot(int i, double jtag);
   int new_slot(int i, double jtag);
   int initial_link_kind(int i, tagint jtag, double rsq, double dbar, bool same_body);
