@@ -47,12 +47,11 @@ _SCRIPT = textwrap.dedent(
 )
 
 
-def _run(tmp_path, name, np_=1, **extra):
-    # no velocity-dependent forces: LAMMPS re-evaluates forces at the setup of a continued run
-    # with full-step velocities (the uninterrupted run used half-step ones), so a damped law
-    # can only be reproduced to within the damping force of one step
-    v = block_setup("mca", 2, tmp_path / name, n=12,
-                    params=McaLaw(dim=2, link_damping=0.0, contact_viscosity=0.0))
+def _run(tmp_path, name, np_=1, law=None, **extra):
+    # default: no velocity-dependent forces (the 1-vs-2-rank and momentum tests were calibrated
+    # so); the restart test also runs the default, damped and viscous law
+    law = law or McaLaw(dim=2, link_damping=0.0, contact_viscosity=0.0)
+    v = block_setup("mca", 2, tmp_path / name, n=12, params=law)
     v.update(vshear=100.0, **extra)
     v = {k: str(val) for k, val in v.items()}
     out = tmp_path / f"{name}.npz"
@@ -74,11 +73,17 @@ def _dx(a, b):
     return float(np.abs(d).max())
 
 
-def test_restart_reproduces_the_uninterrupted_run(lammps_available, tmp_path):
-    full = _run(tmp_path, "full", steps=STEPS)
+@pytest.mark.parametrize("damped", [False, True], ids=["undamped", "damped_viscous"])
+def test_restart_reproduces_the_uninterrupted_run(lammps_available, tmp_path, damped):
+    # damped: the default law's link damping and contact viscosity.  The setup of the continued
+    # run must not recompute those forces from full-step velocities (the uninterrupted run used
+    # half-step ones): it returns the committed step's forces
+    law = McaLaw(dim=2) if damped else None
+    assert law is None or (law.link_damping > 0 and law.contact_viscosity > 0)
+    full = _run(tmp_path, "full", law=law, steps=STEPS)
     rst = tmp_path / "half.restart"
-    _run(tmp_path, "first", steps=STEPS // 2, restart_out=rst, write=1)
-    second = _run(tmp_path, "second", steps=STEPS // 2, restart_in=rst, resume=1)
+    _run(tmp_path, "first", law=law, steps=STEPS // 2, restart_out=rst, write=1)
+    second = _run(tmp_path, "second", law=law, steps=STEPS // 2, restart_in=rst, resume=1)
     # the run passes rupture and welding: the state under test really changes
     assert full["tallies"][4] > 0 and full["tallies"][5] > 0
     # same link tallies (cumulative counters travel in the restart file), same plastic state

@@ -39,10 +39,12 @@ class FixMCAState : public Fix {
   enum { FREE = 0, LINK = 1, WELD = 2, CONTACT = 3, ATTACH = 4 };
   // automaton layout: stress[6], eps_p tensor[6], eps_eq, pending deps[6], X,
   // n_links, n_cross, counters[4] (cross formed, cross broken, links broken, welds formed),
-  // von Mises stress, X used by the forces of the last committed step (for re-evaluations)
+  // von Mises stress, X used by the forces of the last committed step (for re-evaluations),
+  // the pair force and torque of the last committed step (restored by a re-evaluation)
   enum {
     A_SIG = 0, A_EPT = 6, A_EEQ = 12, A_DEP = 13, A_X = 19, A_NL = 20, A_NC = 21,
-    A_CF = 22, A_CB = 23, A_LB = 24, A_WF = 25, A_SEQ = 26, A_XU = 27, NAUTO = 28
+    A_CF = 22, A_CB = 23, A_LB = 24, A_WF = 25, A_SEQ = 26, A_XU = 27, A_F = 28, A_T = 31,
+    NAUTO = 34
   };
   enum { NOUT = 10 };
 

@@ -16,9 +16,9 @@
      4. each automaton's stress is returned to the von Mises yield surface and
         the increment of plastic strain becomes pending for the next step.
    State updates happen once per timestep: the force evaluations of a run's
-   setup (after read_restart, or of a second run command) recompute forces
-   from the stored state without advancing it, so a restarted run continues
-   the uninterrupted one.
+   setup (after read_restart, or of a second run command) do not advance the
+   state and return the forces of the last committed step, so a restarted run
+   continues the uninterrupted one.
 ------------------------------------------------------------------------- */
 
 #include "pair_mca.h"
@@ -667,6 +667,23 @@ void PairMCA::compute(int eflag, int vflag)
     cb += autom[i][FS::A_CB];
     lb += autom[i][FS::A_LB];
     wf += autom[i][FS::A_WF];
+  }
+  if (advance) {
+    // the pair forces of this committed step: a re-evaluation of the same step (the setup of a
+    // run continued from a restart, or of a second run command) returns them unchanged.
+    // Recomputing them would use full-step velocities where the committed step used
+    // half-step ones (velocity Verlet), so damping and viscosity would differ by one step
+    for (int i = 0; i < nlocal; i++)
+      for (int c = 0; c < 3; c++) {
+        autom[i][FS::A_F + c] = f[i][c];
+        autom[i][FS::A_T + c] = torque[i][c];
+      }
+  } else if (fix->last_commit >= 0.0) {
+    for (int i = 0; i < nlocal; i++)
+      for (int c = 0; c < 3; c++) {
+        f[i][c] = autom[i][FS::A_F + c];
+        torque[i][c] = autom[i][FS::A_T + c];
+      }
   }
   if (init_links) fix->initialized = 1;
   if (advance) fix->last_commit = (double) update->ntimestep;
