@@ -331,16 +331,7 @@ void PairMCA::image_shifts()
 void PairMCA::canonical_geometry(int a, int b, const int *jimg, bool i_is_a, double *R, double *Va,
                                  double *Vb)
 {
-  double **x = atom->x, **v = atom->v;
-  if ((jimg[0] | jimg[1] | jimg[2]) == 0) {
-    // local partner or a plain copy of a remote atom: both ranks hold the same numbers
-    for (int c = 0; c < 3; c++) {
-      R[c] = x[b][c] - x[a][c];
-      Va[c] = v[a][c];
-      Vb[c] = v[b][c];
-    }
-    return;
-  }
+  // (the caller handles a partner that is not an image: R = x_b - x_a)
   // image of b relative to a (j is the ghost: b's image if i is a, else minus a's)
   const double n0 = i_is_a ? jimg[0] : -jimg[0], n1 = i_is_a ? jimg[1] : -jimg[1],
                n2 = i_is_a ? jimg[2] : -jimg[2];
@@ -432,7 +423,16 @@ void PairMCA::compute(int eflag, int vflag)
       // canonical relative position a -> b and velocities, bit-identical on every rank that
       // evaluates the pair (canonical_geometry)
       double R[3], Va[3], Vb[3];
-      canonical_geometry(a, b, gimg[j], i_is_a, R, Va, Vb);
+      const int *jimg = gimg[j];
+      if ((jimg[0] | jimg[1] | jimg[2]) == 0) {
+        // local partner or a plain copy of a remote atom: both ranks hold the same numbers
+        for (int c = 0; c < 3; c++) {
+          R[c] = x[b][c] - x[a][c];
+          Va[c] = v[a][c];
+          Vb[c] = v[b][c];
+        }
+      } else
+        canonical_geometry(a, b, jimg, i_is_a, R, Va, Vb);
       const double dx = sg * R[0], dy = sg * R[1], dz = sg * R[2];
       const double rsq = R[0] * R[0] + R[1] * R[1] + R[2] * R[2];
       int k = cache_i[jj];
@@ -466,7 +466,8 @@ void PairMCA::compute(int eflag, int vflag)
       const double r = std::sqrt(rsq);
       const double ir = 1.0 / r;
       const double n[3] = {R[0] * ir, R[1] * ir, R[2] * ir};
-      const double eraw = (r - dbar) / dbar;
+      const double idbar = 1.0 / dbar;
+      const double eraw = r * idbar - 1.0;
       int kind = static_cast<int>(s[FS::S_KIND]);
 
       if (kind == FS::CONTACT && eraw >= 0.0) {    // contact opened: forget it
@@ -493,11 +494,14 @@ void PairMCA::compute(int eflag, int vflag)
         // then add the tangential part of this step's contact-point displacement
         const double xn = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2];
         const double m0 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2];
-        for (int c = 0; c < 3; c++) xi[c] -= xn * n[c];
-        const double m1 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2];
-        if (m1 > 0.0) {
-          const double sc = std::sqrt(m0 / m1);
-          for (int c = 0; c < 3; c++) xi[c] *= sc;
+        if (xn != 0.0 && m0 > 0.0) {
+          // projection removes xn^2 of |xi|^2; restore the magnitude, sqrt(m0/(m0 - xn^2)).
+          // The normal turns by ~1e-6 rad per step, so q = xn^2/m0 ~ 1e-12 and the series
+          // 1 + q/2 + 3q^2/8 is exact to round-off (error 5q^3/16); the square root only if not
+          const double q = xn * xn / m0;
+          const double sc = (q < 1e-4) ? 1.0 + q * (0.5 + 0.375 * q)
+                                       : ((q < 1.0) ? std::sqrt(1.0 / (1.0 - q)) : 0.0);
+          for (int c = 0; c < 3; c++) xi[c] = sc * (xi[c] - xn * n[c]);
         }
         double du[3];
         for (int c = 0; c < 3; c++) du[c] = R[c] - s[FS::S_RP + c] - dt * wxn[c];
@@ -529,7 +533,7 @@ void PairMCA::compute(int eflag, int vflag)
       }
 
       const double A = pair_area(dbar, dim);
-      const double sf = shear_factor(mat, dbar);
+      const double sf = 2.0 * mat.G * idbar;    // shear_factor(mat, dbar)
       // X of the previous step; a re-evaluation (run setup) uses the X the forces of the
       // last committed step used, so it reproduces those forces exactly
       const int ix = advance ? FS::A_X : FS::A_XU;
@@ -612,33 +616,28 @@ void PairMCA::compute(int eflag, int vflag)
           Ma[c] = kr * s[FS::S_TH + c] + cr * (omega[b][c] - omega[a][c]);
       }
 
-      // force and torque on i (and on j when it is local: F_b = -F_a)
-      double Fe_c[3] = {Fe[0], Fe[1], Fe[2]};
+      // force and torque on i (and on j when it is local: F_b = -F_a).  Both automata see the
+      // same n x F (n and F both change sign) and the same Love-Weber dyad n (x) F_e, so each is
+      // formed once; the torque of the tangential force is r n x F (n x n F_n = 0)
+      const double F[3] = {Fe[0] + Fd[0], Fe[1] + Fd[1], Fe[2] + Fd[2]};
+      const double nxF[3] = {n[1] * F[2] - n[2] * F[1], n[2] * F[0] - n[0] * F[2],
+                             n[0] * F[1] - n[1] * F[0]};
+      const double L[6] = {n[0] * Fe[0], n[1] * Fe[1], n[2] * Fe[2],
+                           0.5 * (n[0] * Fe[1] + n[1] * Fe[0]), 0.5 * (n[0] * Fe[2] + n[2] * Fe[0]),
+                           0.5 * (n[1] * Fe[2] + n[2] * Fe[1])};
+      const bool counted = linked && !attached;    // attachments (to rigid layers) are not links
       auto apply = [&](int q, double sq, double delx, double dely, double delz) {
-        const double nq[3] = {sq * n[0], sq * n[1], sq * n[2]};    // from q towards its partner
-        double Fq[3], Ft[3];
-        for (int c = 0; c < 3; c++) Fq[c] = sq * (Fe_c[c] + Fd[c]);
-        const double Fqn = Fq[0] * nq[0] + Fq[1] * nq[1] + Fq[2] * nq[2];
-        for (int c = 0; c < 3; c++) Ft[c] = Fq[c] - Fqn * nq[c];
         const double rq = radius[q];
-        f[q][0] += Fq[0];
-        f[q][1] += Fq[1];
-        f[q][2] += Fq[2];
-        torque[q][0] += rq * (nq[1] * Ft[2] - nq[2] * Ft[1]) + sq * Ma[0];
-        torque[q][1] += rq * (nq[2] * Ft[0] - nq[0] * Ft[2]) + sq * Ma[1];
-        torque[q][2] += rq * (nq[0] * Ft[1] - nq[1] * Ft[0]) + sq * Ma[2];
-        if (evflag) ev_tally_xyz_full(q, 0.0, 0.0, Fq[0], Fq[1], Fq[2], delx, dely, delz);
-        // Love-Weber sum of the elastic pair forces (contact point r_q n_q)
-        const double Feq[3] = {sq * Fe_c[0], sq * Fe_c[1], sq * Fe_c[2]};
+        f[q][0] += sq * F[0];
+        f[q][1] += sq * F[1];
+        f[q][2] += sq * F[2];
+        torque[q][0] += rq * nxF[0] + sq * Ma[0];
+        torque[q][1] += rq * nxF[1] + sq * Ma[1];
+        torque[q][2] += rq * nxF[2] + sq * Ma[2];
+        if (evflag) ev_tally_xyz_full(q, 0.0, 0.0, sq * F[0], sq * F[1], sq * F[2], delx, dely, delz);
         double *acc = sacc[q];
-        acc[0] += rq * nq[0] * Feq[0];
-        acc[1] += rq * nq[1] * Feq[1];
-        acc[2] += rq * nq[2] * Feq[2];
-        acc[3] += 0.5 * rq * (nq[0] * Feq[1] + nq[1] * Feq[0]);
-        acc[4] += 0.5 * rq * (nq[0] * Feq[2] + nq[2] * Feq[0]);
-        acc[5] += 0.5 * rq * (nq[1] * Feq[2] + nq[2] * Feq[1]);
-        // attachments (to rigid layers) are not links of the material: not counted
-        if (linked && !attached) {
+        for (int c = 0; c < 6; c++) acc[c] += rq * L[c];
+        if (counted) {
           acc[6] += 1.0;
           if (cross) acc[7] += 1.0;
         }
