@@ -320,6 +320,8 @@ def main(argv=None) -> int:
     ap.add_argument("--table", default=None, help="write the nanoscale table (JSON) from --campaign at the end")
     ap.add_argument("--description", default="", help="one line stored in the nanoscale table's provenance")
     ap.add_argument("--figures", default=None, help="folder for the campaign figures (mu(P), layer(P)) at the end")
+    ap.add_argument("--run-prefix", default="",
+                    help="prefix of the run names (e.g. 'mca_': one campaign CSV holds several laws' rows)")
     ap.add_argument("--out", default="mca_sweep", help="output folder")
     ap.add_argument("--resume", action="store_true", help="skip finished runs, resume interrupted ones")
     ap.add_argument("--reanalyse", action="store_true",
@@ -340,7 +342,7 @@ def main(argv=None) -> int:
     points = [(v, p, sd) for v in args.velocities for p in args.pressures for sd in seeds]
     default_law = preset_params(preset, dim=args.dim).bond_style
     for v, p, sd in points:
-        name = f"v{v:g}_p{p / 1e6:g}MPa" + (f"_s{sd}" if len(seeds) > 1 or args.seeds else "")
+        name = args.run_prefix + f"v{v:g}_p{p / 1e6:g}MPa" + (f"_s{sd}" if len(seeds) > 1 or args.seeds else "")
         run_dir = out / name
         row: dict = {"velocity_m_s": v, "pressure_Pa": p, "run": name, "seed": sd}
         try:
