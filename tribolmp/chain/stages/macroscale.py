@@ -146,6 +146,14 @@ class Macroscale(Stage):
                  drive_force=res.drive_force, contact_force=f_contact, phase=res.phase,
                  mu_s_N=mu_s * scene.load.normal_force, mu_k_N=mu_k * scene.load.normal_force)
         slips = [e for e in res.events if str(e.get("to_phase", "")).startswith("slip")]
+        resticks = [e for e in res.events if e.get("to_phase") == "stick"]
+        from ...models.macro.reference import restick_criterion
+
+        # Whether the data allow repeated stick-slip (analytic, constant mu_s/mu_k, contact spring
+        # kc or rigid): stated next to what the integration gave.
+        crit = (restick_criterion(scene.kinematics.mass, scene.kinematics.drive_stiffness,
+                                  scene.kinematics.sliding_velocity, scene.load.normal_force, mu_s, mu_k,
+                                  kc or 0.0) if kc is not None or kw.get("contact_law") != "mdr" else None)
         values = {
             "mu": mu,
             "mu_source": mu_src,
@@ -160,6 +168,9 @@ class Macroscale(Stage):
             "mu_kinetic": mu_k,
             "n_transitions": int(res.n_transitions),
             "n_slip_events": len(slips),
+            # stick phases: the initial one (the body starts at rest) plus every re-stick after a slip
+            "n_stick_phases": 1 + len(resticks),
+            "restick_criterion": crit,
             "max_drive_force_N": float(np.max(res.drive_force)),
             "mean_drive_force_N": float(np.mean(res.drive_force)),
             "max_velocity_m_s": float(np.max(res.v)),

@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-__all__ = ["squeeze_approach_gap", "vibrated_coulomb_mean_force", "stick_slip_cycle", "free_oscillation", "mindlin_loading", "mindlin_loop", "mindlin_dissipation"]
+__all__ = ["restick_criterion", "squeeze_approach_gap", "vibrated_coulomb_mean_force", "stick_slip_cycle", "free_oscillation", "mindlin_loading", "mindlin_loop", "mindlin_dissipation"]
 
 
 def stick_slip_cycle(mass: float, stiffness: float, velocity: float, normal_force: float,
@@ -54,6 +54,42 @@ def stick_slip_cycle(mass: float, stiffness: float, velocity: float, normal_forc
         period=slip + stick,
         slip_distance=velocity * (slip + stick),
     )
+
+
+def restick_criterion(mass: float, drive_stiffness: float, velocity: float, normal_force: float,
+                      mu_s: float, mu_k: float, contact_stiffness: float = 0.0) -> dict:
+    """Whether a body that has slipped once sticks again (repeated stick-slip), analytically.
+
+    Model of :func:`tribolmp.models.macro.stick_slip` with a constant
+    ``mu_s >= mu_k``: during stick the body creeps on the tangential contact
+    spring ``k_c`` in series with the drive spring ``k_d``, at the quasi-static
+    velocity ``v0 = V k_d / (k_d + k_c)`` (``v0 = 0`` for a rigid contact,
+    ``k_c = 0`` here); the contact's transient is damped (the model's contact
+    damping) and far shorter than a stick phase.  At the slip the contact force
+    drops from ``mu_s N`` to ``mu_k N``: the undamped body then oscillates about
+    the kinetic equilibrium at ``omega = sqrt(k_d / m)`` with velocity
+    ``V + A omega sin(...)``, ``(A omega)^2 = (dF / sqrt(k_d m))^2 + (V - v0)^2``
+    and ``dF = (mu_s - mu_k) N``.  It sticks again iff its velocity reaches zero,
+    ``A omega > V``, i.e.
+
+        dF > dF_c = sqrt(k_d m v0 (2 V - v0)).
+
+    With a rigid contact (``v0 = 0``) any static excess gives stick-slip (the
+    classic result); a compliant contact's pre-slip creep needs a finite one.
+
+    Returns
+    -------
+    dict
+        ``static_excess_N`` (dF), ``threshold_N`` (dF_c), ``creep_velocity_m_s``
+        (v0), ``repeats`` (bool, dF > dF_c), ``min_slip_velocity_m_s`` (V - A omega).
+    """
+    k, V, m = float(drive_stiffness), float(velocity), float(mass)
+    v0 = 0.0 if contact_stiffness <= 0 or math.isinf(contact_stiffness) else V * k / (k + contact_stiffness)
+    dF = (float(mu_s) - float(mu_k)) * float(normal_force)
+    threshold = math.sqrt(k * m * v0 * (2.0 * V - v0))
+    a_omega = math.hypot(dF / math.sqrt(k * m), V - v0)
+    return dict(static_excess_N=dF, threshold_N=threshold, creep_velocity_m_s=v0,
+                repeats=bool(dF > threshold), min_slip_velocity_m_s=V - a_omega)
 
 
 def free_oscillation(t, mass: float, stiffness: float, velocity: float, x0: float, v0: float, t0: float, xd0: float):
