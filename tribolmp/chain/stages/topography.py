@@ -472,6 +472,8 @@ def _running_in(ctx: StageContext) -> StageOutput:
         "slab_thickness_m": float(slab), "slab_thickness_source": slab_src,
         "contact_method": method, "contact_method_reason": ctx.plan.options.get("contact_method_reason"),
         "phi_source": res.phi_source,
+        "running_in_warnings": list(res.warnings),
+        "contact_pixels_min": res.contact_pixels_min,
         "friction": jsonable({k: fr[k] for k in ("mu", "mu_kinetic", "mu_static", "extrapolated", "extrapolation",
                                                  "pressure_Pa", "pressure_source", "source", "velocity_table")}),
         "friction_table_source": fr_src,
