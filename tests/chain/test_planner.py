@@ -37,8 +37,8 @@ def test_default_scene_plan():
     assert plan["topography"].needs == ("nanoscale",)
     assert plan["contact"].needs == ("topography",)
     assert "dry" in plan["lubrication"].reason
-    # Tribospectroscopy models the probe's own tips; from the chain it takes only mu.
-    # Issue 15: both also take the running-in hand-off of topography (mu_s, mu_k at the part; the length).
+    # Tribospectroscopy models the probe's own tips; from the chain it takes only mu. Issue 15:
+    # both also take the running-in hand-off of topography (mu_s, mu_k at the part; the length).
     assert plan["tribospectroscopy"].needs == ("nanoscale", "topography")
     assert plan["macroscale"].needs == ("contact", "nanoscale", "topography")
 
@@ -127,7 +127,9 @@ def test_auto_uses_the_shipped_table():
     from tribolmp.models.contact.choice import reduced_pressures_of_scene
 
     # the plan judges the rough-surface table at the scene's own reduced pressures p/(E* h'rms)
-    best = choose_contact_method(scene.contact.tolerance, table, reduced_pressures=reduced_pressures_of_scene(scene))
+    best = choose_contact_method(
+        scene.contact.tolerance, table, reduced_pressures=reduced_pressures_of_scene(scene)
+    )
     assert (opts["method"], opts["mesh"]) == (best["method"], best["mesh"])
 
 

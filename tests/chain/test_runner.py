@@ -20,14 +20,21 @@ from tribolmp.scene import load_scene, scene_path
 
 
 def with_run(stage, fn):
-    """Return a copy of ``stage`` whose ``run`` is ``fn`` (same module, so the same code closure and key)."""
+    """Return a copy of ``stage`` whose ``run`` is ``fn``.
+
+    Same module, so the same code closure and cache key.
+    """
     cls = type(stage)
-    return type(cls.__name__, (cls,), {"run": lambda self, ctx: fn(ctx), "__module__": cls.__module__})()
+    return type(
+        cls.__name__, (cls,), {"run": lambda self, ctx: fn(ctx), "__module__": cls.__module__}
+    )()
 
 
 def set_run(monkeypatch, name, fn):
     """Replace stage ``name``'s computation in the registry the planner uses."""
-    monkeypatch.setattr(planner_mod, "REGISTRY", planner_mod.REGISTRY.replaced(name, with_run(REGISTRY[name], fn)))
+    monkeypatch.setattr(
+        planner_mod, "REGISTRY", planner_mod.REGISTRY.replaced(name, with_run(REGISTRY[name], fn))
+    )
 
 
 @pytest.fixture
@@ -40,7 +47,9 @@ def calls(monkeypatch):
             counts[stage.name] = counts.get(stage.name, 0) + 1
             (ctx.workdir / "out.txt").write_text(f"{stage.name} {ctx.seed} {sorted(ctx.upstream)}")
             files = {"out": "out.txt", **{h.file: "out.txt" for h in stage.produces}}
-            return StageOutput(values={"calls": counts[stage.name]}, units={"calls": "1"}, files=files)
+            return StageOutput(
+                values={"calls": counts[stage.name]}, units={"calls": "1"}, files=files
+            )
 
         return fn
 
@@ -87,13 +96,20 @@ def test_changed_input_invalidates_only_downstream(tmp_path, calls):
     out = tmp_path / "run"
     scene = _scene()
     runner_mod.run_chain(scene, out, quiet=True, figures=False)
-    # [tribospectroscopy] is read by that stage only (issue 15: [roughness] is now the part's surface,
-    # which the running-in topography evolves, so it invalidates every stage).
-    changed = dataclasses.replace(scene, tribospectroscopy=dataclasses.replace(scene.tribospectroscopy, frequency=60e3))
+    # [tribospectroscopy] is read by that stage only (issue 15: [roughness] is now the part's
+    # surface, which the running-in topography evolves, so it invalidates every stage).
+    changed = dataclasses.replace(
+        scene, tribospectroscopy=dataclasses.replace(scene.tribospectroscopy, frequency=60e3)
+    )
     runner_mod.run_chain(changed, out, quiet=True, figures=False)
     assert calls["topography"] == 1 and calls["contact"] == 1 and calls["macroscale"] == 1
     assert calls["tribospectroscopy"] == 2
-    changed = dataclasses.replace(scene, roughness=dataclasses.replace(scene.roughness, realizations=scene.roughness.realizations + 1))
+    changed = dataclasses.replace(
+        scene,
+        roughness=dataclasses.replace(
+            scene.roughness, realizations=scene.roughness.realizations + 1
+        ),
+    )
     runner_mod.run_chain(changed, out, quiet=True, figures=False)
     assert calls["topography"] == 2 and calls["contact"] == 2 and calls["macroscale"] == 2
 
@@ -111,7 +127,9 @@ def test_failing_stage_is_reported_and_others_kept(tmp_path, calls, monkeypatch)
     rows = {r["name"]: r for r in _report(out)["stages"]}
     assert rows["topography"]["ran"] and rows["tribospectroscopy"]["ran"]
     assert not rows["contact"]["ran"] and rows["contact"]["reason"].startswith("failed:")
-    assert not rows["macroscale"]["ran"] and "upstream stage contact" in rows["macroscale"]["reason"]
+    assert (
+        not rows["macroscale"]["ran"] and "upstream stage contact" in rows["macroscale"]["reason"]
+    )
 
 
 def test_setup_error_in_a_stage_maps_to_setup_error(tmp_path, calls, monkeypatch):
@@ -151,7 +169,9 @@ def test_interrupt_keeps_finished_stages_and_resumes(tmp_path, calls, monkeypatc
 
     set_run(monkeypatch, "contact", resumed)
     run = runner_mod.run_chain(_scene(), out, quiet=True, figures=False)
-    assert seen["checkpoint"] == "half done", "the rerun must find the interrupted stage's checkpoint"
+    assert seen["checkpoint"] == "half done", (
+        "the rerun must find the interrupted stage's checkpoint"
+    )
     assert calls["topography"] == 1 and run.entries["topography"].status == "cached"
     assert run.entries["contact"].status == "computed" and _report(out)["complete"] is True
 

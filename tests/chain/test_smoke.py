@@ -50,12 +50,17 @@ def _dump_toml(data: dict) -> str:
             return "[" + ", ".join(val(x) for x in v) + "]"
         return repr(v)
 
-    return "\n".join(f"[{s}]\n" + "".join(f"{k} = {val(v)}\n" for k, v in body.items()) for s, body in data.items())
+    return "\n".join(
+        f"[{s}]\n" + "".join(f"{k} = {val(v)}\n" for k, v in body.items())
+        for s, body in data.items()
+    )
 
 
 #: The smallest honest rates-given run: a 64 x 64 evolved surface (1.5 decades of k, enough for the
 #: MDR ensemble's measured PSD) and 4 MDR realizations.
-SMALL = {"roughness": {"grid_points": 64, "realizations": 4}}  # the part's surface runs in (issue 15)
+SMALL = {
+    "roughness": {"grid_points": 64, "realizations": 4}
+}  # the part's surface runs in (issue 15)
 
 
 def _stages(out: Path) -> dict[str, dict]:
@@ -73,7 +78,10 @@ def _finite_numbers(obj) -> bool:
 
 
 def test_rates_given_scene_end_to_end(tmp_path):
-    """`tribolmp run` on the rates-given scene: every planned stage runs, nothing else is imported."""
+    """`tribolmp run` on the rates-given scene.
+
+    Every planned stage runs, nothing else is imported.
+    """
     scene_file = small_scene(tmp_path, "rates_given", **SMALL)
     out = tmp_path / "out"
     # The CLI's main() in a fresh interpreter, which then lists the heavy modules it loaded.
@@ -98,10 +106,11 @@ def test_rates_given_scene_end_to_end(tmp_path):
         assert rows[s.name]["ran"] is s.run, (s.name, rows[s.name]["reason"])
     report = json.loads((out / "report.json").read_text())
     assert report["complete"] and report["scene"]["input_hash"] and report["versions"]["numpy"]
-    # Every number is finite (strict JSON would have turned NaN into null, which is caught here too).
+    # Every number is finite (strict JSON would have turned NaN into null,
+    # which is caught here too).
     assert _finite_numbers(report["results"])
-    # The one legitimate null: an infinite interfacial stiffness (the periodic BEM cell is closed at the
-    # macroscale pressure; strict JSON has no inf), which then carries no compliance share.
+    # The one legitimate null: an infinite interfacial stiffness (the periodic BEM cell is closed
+    # at the macroscale pressure; strict JSON has no inf), which then carries no compliance share.
     closed = report["results"]["macroscale"]["values"].get("interface_compliance_share") == 0.0
     assert all(v is not None or (k == "interfacial_stiffness_per_area_N_m3" and closed)
                for r in report["results"].values() for k, v in r["values"].items())
@@ -136,7 +145,9 @@ def test_resume_after_kill(cli, tmp_path):
     )
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert proc.returncode == -9, (proc.returncode, proc.stderr)
-    committed = [p for p in (out / "cache").iterdir() if p.is_dir() and not p.name.endswith(".partial")]
+    committed = [
+        p for p in (out / "cache").iterdir() if p.is_dir() and not p.name.endswith(".partial")
+    ]
     assert [p.name.split("-")[0] for p in committed] == ["topography"]
     before = (committed[0] / "result.json").stat().st_mtime_ns
     partial = json.loads((out / "report.json").read_text())
@@ -146,13 +157,20 @@ def test_resume_after_kill(cli, tmp_path):
     assert res.returncode == 0, res.stderr
     details = json.loads((out / "report.json").read_text())["stage_details"]
     assert details["topography"]["status"] == "cached"
-    assert (committed[0] / "result.json").stat().st_mtime_ns == before, "a cached stage was recomputed"
-    assert all(details[n]["status"] == "computed" for n in ("contact", "macroscale", "tribospectroscopy"))
+    assert (committed[0] / "result.json").stat().st_mtime_ns == before, (
+        "a cached stage was recomputed"
+    )
+    assert all(
+        details[n]["status"] == "computed" for n in ("contact", "macroscale", "tribospectroscopy")
+    )
     assert [r["name"] for r in res.json()] == list(STAGES)
 
 
 def test_damaged_surface_refused_before_anything_runs(cli, tmp_path):
-    """A NaN height map is refused by the contact stage's preflight: exit 2, one line, nothing run (issue 12)."""
+    """A NaN height map is refused by the contact stage's preflight.
+
+    Exit 2, one line, nothing run (issue 12).
+    """
     bad = tmp_path / "bad.npy"
     np.save(bad, np.full((16, 16), np.nan))
     scene_file = tmp_path / "bad.toml"
@@ -174,7 +192,9 @@ def test_damaged_surface_refused_before_anything_runs(cli, tmp_path):
     res = cli("run", scene_file, "--out", tmp_path / "o", "--no-figures", timeout=300)
     assert res.returncode == 2, res.stderr
     lines = res.stderr.strip().splitlines()
-    assert len(lines) == 1 and "[roughness].surface_file" in lines[0] and "Traceback" not in res.stderr
+    assert (
+        len(lines) == 1 and "[roughness].surface_file" in lines[0] and "Traceback" not in res.stderr
+    )
     assert not (tmp_path / "o" / "report.json").exists()
 
 
@@ -193,7 +213,13 @@ def test_failing_stage_one_line_and_others_kept(tmp_path):
 
     registry = REGISTRY.replaced("contact", Broken())
     with pytest.raises(StageError, match=r"contact.*solver diverged"):
-        run_chain(load_scene(scene_path("rates_given")), tmp_path / "o", quiet=True, figures=False, registry=registry)
+        run_chain(
+            load_scene(scene_path("rates_given")),
+            tmp_path / "o",
+            quiet=True,
+            figures=False,
+            registry=registry,
+        )
     rows = _stages(tmp_path / "o")
     assert not rows["contact"]["ran"] and rows["contact"]["reason"].startswith("failed:")
     assert rows["tribospectroscopy"]["ran"], rows["tribospectroscopy"]["reason"]
@@ -237,8 +263,12 @@ def test_default_scene_resumes_lammps_after_kill(tmp_path, lammps_available):
 
     out = tmp_path / "out"
     env = {k: v for k, v in os.environ.items() if k != "LD_LIBRARY_PATH"}
-    proc = subprocess.Popen([sys.executable, "-m", "tribolmp", "run", "--out", str(out), "--quiet"], env=env,
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "tribolmp", "run", "--out", str(out), "--quiet"],
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
     try:
         deadline = time.time() + 600
         while time.time() < deadline and proc.poll() is None:
@@ -253,9 +283,16 @@ def test_default_scene_resumes_lammps_after_kill(tmp_path, lammps_available):
     finally:
         if proc.poll() is None:
             proc.kill()
-    assert not list(out.glob("cache/nanoscale-*[!l]")), "nothing may be committed for an interrupted stage"
-    res = subprocess.run([sys.executable, "-m", "tribolmp", "run", "--out", str(out), "--quiet", "--no-figures"],
-                         capture_output=True, text=True, timeout=900, env=env)
+    assert not list(out.glob("cache/nanoscale-*[!l]")), (
+        "nothing may be committed for an interrupted stage"
+    )
+    res = subprocess.run(
+        [sys.executable, "-m", "tribolmp", "run", "--out", str(out), "--quiet", "--no-figures"],
+        capture_output=True,
+        text=True,
+        timeout=900,
+        env=env,
+    )
     assert res.returncode == 0, res.stderr
     details = json.loads((out / "report.json").read_text())["stage_details"]
     assert details["nanoscale"]["status"] == "computed"
@@ -270,9 +307,14 @@ def test_polishing_scene_end_to_end(cli, tmp_path):
     res = cli("run", scene_path("polishing"), "--out", out, timeout=600)
     assert res.returncode == 0, res.stderr
     report = json.loads((out / "report.json").read_text())
-    assert [r["name"] for r in report["stages"] if r["ran"]] == ["topography", "contact", "lubrication"]
+    assert [r["name"] for r in report["stages"] if r["ran"]] == [
+        "topography",
+        "contact",
+        "lubrication",
+    ]
     values = report["results"]["lubrication"]["values"]
-    # The polishing model's own volume bookkeeping (Archard sum vs height-map change) closes to round-off.
+    # The polishing model's own volume bookkeeping (Archard sum vs
+    # height-map change) closes to round-off.
     assert values["polishing_mass_balance_error"] < 1e-9
     assert values["polishing_sq_final_m"] < values["polishing_sq_initial_m"]
     assert "polishing" in report["figures"]

@@ -20,4 +20,13 @@ from .planner import STAGES, Plan, StagePlan, choose_contact_method, plan_scene
 from .registry import REGISTRY, Registry
 from .runner import run_chain
 
-__all__ = ["STAGES", "REGISTRY", "Registry", "Plan", "StagePlan", "plan_scene", "choose_contact_method", "run_chain"]
+__all__ = [
+    "STAGES",
+    "REGISTRY",
+    "Registry",
+    "Plan",
+    "StagePlan",
+    "plan_scene",
+    "choose_contact_method",
+    "run_chain",
+]

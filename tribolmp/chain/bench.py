@@ -25,7 +25,10 @@ __all__ = ["find_benchmarks_dir", "run_benchmark", "gather"]
 
 
 def find_benchmarks_dir(start: str | Path | None = None) -> Path | None:
-    """Find the repository's ``benchmarks/`` folder: under ``start`` (default cwd) or next to the package."""
+    """Find the repository's ``benchmarks/`` folder.
+
+    Under ``start`` (default cwd) or next to the package.
+    """
     candidates = []
     if start is not None:
         candidates.append(Path(start))
@@ -37,7 +40,10 @@ def find_benchmarks_dir(start: str | Path | None = None) -> Path | None:
 
 
 def run_benchmark(script: Path, *, quick: bool = True, timeout: float = 900.0) -> dict[str, Any]:
-    """Run ``script``'s ``main(["--quick"])`` in a subprocess; return status, wall time and output tail."""
+    """Run ``script``'s ``main(["--quick"])`` in a subprocess.
+
+    Return status, wall time and output tail.
+    """
     argv = ["--quick"] if quick else []
     code = (
         "import importlib.util, sys\n"
@@ -49,17 +55,29 @@ def run_benchmark(script: Path, *, quick: bool = True, timeout: float = 900.0) -
     t0 = time.perf_counter()
     try:
         proc = subprocess.run(
-            [sys.executable, "-c", code], cwd=script.parent.parent, capture_output=True, text=True, timeout=timeout
+            [sys.executable, "-c", code],
+            cwd=script.parent.parent,
+            capture_output=True,
+            text=True,
+            timeout=timeout,
         )
         rc, out, err = proc.returncode, proc.stdout, proc.stderr
     except subprocess.TimeoutExpired:
         rc, out, err = -1, "", f"timed out after {timeout:g} s"
     tail = " ".join((err.strip().splitlines() or [""])[-1].split())
-    return {"script": script.name, "returncode": rc, "time_s": time.perf_counter() - t0, "stdout": out, "error": tail if rc else ""}
+    return {
+        "script": script.name,
+        "returncode": rc,
+        "time_s": time.perf_counter() - t0,
+        "stdout": out,
+        "error": tail if rc else "",
+    }
 
 
 def _owners(scripts: list[Path], results_dir: Path | None) -> dict[str, list[Path]]:
-    """CSV files of each benchmark: named after its stem, else after its model (the stem's first word).
+    """CSV files of each benchmark.
+
+    Named after its stem, else after its model (the stem's first word).
 
     ``contact_speed_vs_error.py`` owns ``contact_speed_vs_error*.csv`` and also
     ``contact_rough_speed_vs_error.csv`` (model ``contact``) when no other script's
@@ -137,9 +155,19 @@ def gather(
     results_dir = bdir / "results" if bdir else None
     entries = []
     for i, script in enumerate(scripts, 1):
-        entry: dict[str, Any] = {"name": script.stem, "ran": False, "returncode": None, "time_s": None, "error": ""}
+        entry: dict[str, Any] = {
+            "name": script.stem,
+            "ran": False,
+            "returncode": None,
+            "time_s": None,
+            "error": "",
+        }
         if run:
-            print(f"[{i}/{len(scripts)}] running {script.name} {'--quick' if quick else ''}", file=log, flush=True)
+            print(
+                f"[{i}/{len(scripts)}] running {script.name} {'--quick' if quick else ''}",
+                file=log,
+                flush=True,
+            )
             r = run_benchmark(script, quick=quick, timeout=timeout)
             entry.update(ran=True, returncode=r["returncode"], time_s=r["time_s"], error=r["error"])
         owned = _owners(scripts, results_dir)
@@ -148,13 +176,20 @@ def gather(
         entry["tables"] = []
         for p in csvs:
             header, rows = _read_csv(p)
-            entry["tables"].append({"file": p.name, "header": header, "rows": rows, "mtime": p.stat().st_mtime})
+            entry["tables"].append(
+                {"file": p.name, "header": header, "rows": rows, "mtime": p.stat().st_mtime}
+            )
         entries.append(entry)
 
     md = ["# tribolmp benchmarks: speed against error", ""]
     if bdir is None:
-        md.append("No `benchmarks/` folder found (run from the repository root or pass --benchmarks).")
-    md.append(f"Source: `{bdir}`; mode: {'ran --quick' if run and quick else 'ran full' if run else 'collected existing CSVs'}.")
+        md.append(
+            "No `benchmarks/` folder found (run from the repository root or pass --benchmarks)."
+        )
+    md.append(
+        f"Source: `{bdir}`; mode: "
+        f"{'ran --quick' if run and quick else 'ran full' if run else 'collected existing CSVs'}."
+    )
     md.append("")
     long = io.StringIO()
     w = csv.writer(long)
@@ -163,12 +198,18 @@ def gather(
         md.append(f"## {e['name']}")
         md.append("")
         if e["ran"]:
-            status = "ok" if e["returncode"] == 0 else f"FAILED (exit {e['returncode']}): {e['error']}"
+            status = (
+                "ok" if e["returncode"] == 0 else f"FAILED (exit {e['returncode']}): {e['error']}"
+            )
             md.append(f"Run: {status}, {e['time_s']:.1f} s.")
         if not e["tables"]:
             md.append("No CSV results in benchmarks/results/.")
         for t in e["tables"]:
-            md += ["", f"`{t['file']}` ({time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime(t['mtime']))})", ""]
+            md += [
+                "",
+                f"`{t['file']}` ({time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime(t['mtime']))})",
+                "",
+            ]
             if t["header"]:
                 md.append("| " + " | ".join(t["header"]) + " |")
                 md.append("|" + "---|" * len(t["header"]))
@@ -182,7 +223,12 @@ def gather(
     for e in entries:
         for t in e["tables"]:
             t.pop("mtime", None)
-    return {"benchmarks_dir": str(bdir) if bdir else None, "benchmarks": entries, "markdown": str(md_path), "csv": str(csv_path)}
+    return {
+        "benchmarks_dir": str(bdir) if bdir else None,
+        "benchmarks": entries,
+        "markdown": str(md_path),
+        "csv": str(csv_path),
+    }
 
 
 def build_contact_table(results_dir: str | Path) -> dict[str, Any]:
@@ -209,8 +255,9 @@ def build_contact_table(results_dir: str | Path) -> dict[str, Any]:
     rdir = Path(results_dir)
     refs = rdir.resolve().parent.parent / "tests" / "data" / "contact_references.json"
     if refs.exists():
-        # The summary of the references is what tests/data/generate_reference_data.py contact-summary
-        # ships as the package table; the chain does not import test code, so it reads that table.
+        # The summary of the references is what
+        # tests/data/generate_reference_data.py contact-summary ships as the package
+        # table; the chain does not import test code, so it reads that table.
         shipped = Path(__file__).resolve().parents[1] / "data" / "contact_speed_error.json"
         table = json.loads(shipped.read_text())
         table["provenance"] = f"{table.get('provenance', '')} (read by build_contact_table)"
@@ -256,12 +303,16 @@ def build_contact_table(results_dir: str | Path) -> dict[str, Any]:
             "built by tribolmp.chain.bench.build_contact_table from benchmarks/results/"
             + ", ".join(sources)
             + " (written by benchmarks/contact_speed_vs_error.py). mdr rows: max over pressures of "
-            "|k_MDR/k_BEM,punch - 1| on that benchmark's rough surface at grid n (16 profiles), time = MDR wall "
-            "time per pressure. bem rows: the non-periodic BEM's discretization error at grid n on Hertz "
-            "(indentation vs analytic; a proxy, the rough surface has no exact solution), time = BEM punch "
+            "|k_MDR/k_BEM,punch - 1| on that benchmark's rough "
+            "surface at grid n (16 profiles), time = MDR wall "
+            "time per pressure. bem rows: the non-periodic "
+            "BEM's discretization error at grid n on Hertz "
+            "(indentation vs analytic; a proxy, the rough "
+            "surface has no exact solution), time = BEM punch "
             "wall time per pressure on the rough surface."
         ),
-        "quantity": "relative error of the normal contact stiffness (MDR vs non-periodic BEM; BEM vs Hertz)",
+        "quantity": "relative error of the normal contact stiffness "
+                    "(MDR vs non-periodic BEM; BEM vs Hertz)",
         "mesh_unit": "grid points per side of the height map (MDR: spring rows of that length)",
         "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
         "rows": out_rows,

@@ -24,7 +24,14 @@ from typing import Any
 from ..jsonio import atomic_write_json, atomic_write_text, canonical_json, hash_inputs
 from ..locking import DirLock
 
-__all__ = ["StageCache", "CachedStage", "hash_inputs", "canonical_json", "atomic_write_text", "atomic_write_json"]
+__all__ = [
+    "StageCache",
+    "CachedStage",
+    "hash_inputs",
+    "canonical_json",
+    "atomic_write_text",
+    "atomic_write_json",
+]
 
 #: Length of the hex key used in directory names (64 bits are plenty for a per-run cache).
 KEY_LENGTH = 16
@@ -49,7 +56,10 @@ class CachedStage:
         try:
             return self.path / self.record["files"][name]
         except KeyError:
-            raise KeyError(f"stage {self.stage!r} has no file {name!r}; it has {sorted(self.record.get('files', {}))}") from None
+            raise KeyError(
+                f"stage {self.stage!r} has no file {name!r}; "
+                f"it has {sorted(self.record.get('files', {}))}"
+            ) from None
 
 
 class StageCache:
@@ -104,7 +114,13 @@ class StageCache:
         waits, and finds the committed result when it gets the lock.
         """
         self.root.mkdir(parents=True, exist_ok=True)
-        return DirLock(self.root, wait=True, what=f"cache entry {stage}-{key}", name=f".{stage}-{key}.lock", quiet=quiet)
+        return DirLock(
+            self.root,
+            wait=True,
+            what=f"cache entry {stage}-{key}",
+            name=f".{stage}-{key}.lock",
+            quiet=quiet,
+        )
 
     def workdir(self, stage: str, key: str, *, fresh: bool = False) -> Path:
         """Create (or reuse, for checkpoint resume) the working folder; ``fresh`` empties it."""

@@ -52,7 +52,12 @@ class StageEntry:
 
     def row(self) -> dict[str, Any]:
         """Return the contract row ``{"name", "ran", "reason", "time_s"}``."""
-        return {"name": self.name, "ran": self.ran, "reason": self.reason, "time_s": round(self.time_s, 6)}
+        return {
+            "name": self.name,
+            "ran": self.ran,
+            "reason": self.reason,
+            "time_s": round(self.time_s, 6),
+        }
 
 
 @dataclass
@@ -126,12 +131,19 @@ class Progress:
     def finish(self, name: str, status: str, seconds: float) -> None:
         """Close a stage."""
         self.done += 1
-        self._print(f"{self._bar(self.done / self.total)} {name}: {status} ({seconds:.1f} s; total {time.perf_counter() - self._t0:.1f} s)")
+        self._print(
+            f"{self._bar(self.done / self.total)} {name}: {status} "
+            f"({seconds:.1f} s; total {time.perf_counter() - self._t0:.1f} s)"
+        )
 
 
 def _one_line(exc: BaseException) -> str:
     text = " ".join(str(exc).split()) or type(exc).__name__
-    return text if isinstance(exc, (SetupError, StageError)) or ":" in text[:40] else f"{type(exc).__name__}: {text}"
+    return (
+        text
+        if isinstance(exc, (SetupError, StageError)) or ":" in text[:40]
+        else f"{type(exc).__name__}: {text}"
+    )
 
 
 def preflight(scene: Scene, plan: Plan) -> list[str]:
@@ -201,11 +213,22 @@ def run_chain(
     # One run per output folder: a second one would interleave report.json and the LAMMPS
     # outputs of the first.  The flock dies with its holder, so a killed run never blocks.
     with DirLock(out, what="output folder"):
-        return _run_chain_locked(scene, out, force=force, cache_dir=cache_dir, progress=progress, quiet=quiet,
-                                 figures=figures, on_stage=on_stage, registry=registry)
+        return _run_chain_locked(
+            scene,
+            out,
+            force=force,
+            cache_dir=cache_dir,
+            progress=progress,
+            quiet=quiet,
+            figures=figures,
+            on_stage=on_stage,
+            registry=registry,
+        )
 
 
-def _run_chain_locked(scene, out, *, force, cache_dir, progress, quiet, figures, on_stage, registry) -> ChainRun:
+def _run_chain_locked(
+    scene, out, *, force, cache_dir, progress, quiet, figures, on_stage, registry
+) -> ChainRun:
     from . import report as _report
 
     plan = plan_scene(scene, registry=registry)
@@ -230,7 +253,11 @@ def _run_chain_locked(scene, out, *, force, cache_dir, progress, quiet, figures,
         missing = [n for n in sp.needs if run.result(n) is None]
         if missing:
             why = "; ".join(f"{n}: {run.entries[n].reason}" for n in missing)
-            run.entries[sp.name] = StageEntry(sp.name, False, f"skipped: upstream stage {', '.join(missing)} has no result ({why})")
+            run.entries[sp.name] = StageEntry(
+                sp.name,
+                False,
+                f"skipped: upstream stage {', '.join(missing)} has no result ({why})",
+            )
             prog.finish(sp.name, "skipped", 0.0)
             continue
         seed = stage_seed(scene.scene.seed, sp.name)
@@ -239,7 +266,10 @@ def _run_chain_locked(scene, out, *, force, cache_dir, progress, quiet, figures,
             "options": sp.options,
             # The identity of an upstream *result* (not only of its inputs): a forced or otherwise
             # recomputed upstream stage invalidates everything downstream of it.
-            "upstream": {n: f"{run.result(n).key}:{run.result(n).record.get('output_id', '')}" for n in sp.needs},
+            "upstream": {
+                n: f"{run.result(n).key}:{run.result(n).record.get('output_id', '')}"
+                for n in sp.needs
+            },
             "seed": seed,
             "code": code_hash(plan.registry[sp.name]),
         }
@@ -281,14 +311,22 @@ def _run_chain_locked(scene, out, *, force, cache_dir, progress, quiet, figures,
             entry_lock.release()
             dt = time.perf_counter() - t0
             run.entries[sp.name] = StageEntry(
-                sp.name, False, "interrupted; partial work kept for resume", dt, "interrupted", key, error=exc
+                sp.name,
+                False,
+                "interrupted; partial work kept for resume",
+                dt,
+                "interrupted",
+                key,
+                error=exc,
             )
             run.wall_time_s = time.perf_counter() - t_start
             _report.write_json(run, partial=True)
             raise
         except Exception as exc:  # noqa: BLE001 - any failure is recorded and the chain goes on
             dt = time.perf_counter() - t0
-            run.entries[sp.name] = StageEntry(sp.name, False, f"failed: {_one_line(exc)}", dt, "failed", key, error=exc)
+            run.entries[sp.name] = StageEntry(
+                sp.name, False, f"failed: {_one_line(exc)}", dt, "failed", key, error=exc
+            )
             prog.finish(sp.name, "FAILED", dt)
         else:
             dt = time.perf_counter() - t0
@@ -309,7 +347,9 @@ def _run_chain_locked(scene, out, *, force, cache_dir, progress, quiet, figures,
                 "output_id": uuid.uuid4().hex,
             }
             committed = cache.commit(sp.name, key, record)
-            run.entries[sp.name] = StageEntry(sp.name, True, sp.reason, dt, "computed", key, committed)
+            run.entries[sp.name] = StageEntry(
+                sp.name, True, sp.reason, dt, "computed", key, committed
+            )
             prog.finish(sp.name, "done", dt)
         entry_lock.release()
         run.wall_time_s = time.perf_counter() - t_start
@@ -325,6 +365,8 @@ def _run_chain_locked(scene, out, *, force, cache_dir, progress, quiet, figures,
     if failed:
         first = failed[0]
         if isinstance(first.error, SetupError):
-            raise SetupError(f"stage '{first.name}' failed: {_one_line(first.error)}") from first.error
+            raise SetupError(
+                f"stage '{first.name}' failed: {_one_line(first.error)}"
+            ) from first.error
         raise StageError(first.name, _one_line(first.error)) from first.error
     return run

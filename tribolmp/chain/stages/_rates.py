@@ -25,18 +25,25 @@ def upstream_rates(ctx: StageContext) -> tuple[Rates | None, str]:
         return Rates.from_mapping(json.loads(up.file("rates").read_text()), source=src), src
     if ctx.scene.rates is not None:
         rec = ctx.scene.rates.to_record("[rates]")
-        atomic_write_json(ctx.workdir / "rates.json", {k: v for k, v in rec.to_dict().items() if v is not None})
+        atomic_write_json(
+            ctx.workdir / "rates.json", {k: v for k, v in rec.to_dict().items() if v is not None}
+        )
         return rec, "[rates]"
     return None, ""
 
 
 def nanoscale_rates(ctx: StageContext) -> Rates | None:
-    """Return the nanoscale stage's rates record when the planner supplied it, else None (scene rates aside)."""
+    """Return the nanoscale stage's rates record when the planner supplied it, else None.
+
+    Rates given in the scene are not read here.
+    """
     return upstream_rates(ctx)[0] if ctx.handoff("rates") is not None else None
 
 
 def mu_binding(scene, decision: Decision, supplied) -> Decision:
-    """Bind a mu consumer: say where mu comes from and hash ``[rates]`` or ``[load]`` when that is the source.
+    """Bind a mu consumer.
+
+    Say where mu comes from and hash ``[rates]`` or ``[load]`` when that is the source.
 
     The precedence is :func:`tribolmp.models.friction.friction_coefficient`'s:
     the nanoscale hand-off, else ``[rates]``, else ``[load]``.
@@ -48,4 +55,6 @@ def mu_binding(scene, decision: Decision, supplied) -> Decision:
     else:
         src, extra = "[load]", ("load",)
     sections = decision.sections + tuple(s for s in extra if s not in decision.sections)
-    return replace(decision, reason=decision.reason.replace("{mu}", f"mu from {src}"), sections=sections)
+    return replace(
+        decision, reason=decision.reason.replace("{mu}", f"mu from {src}"), sections=sections
+    )

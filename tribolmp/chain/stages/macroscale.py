@@ -1,4 +1,7 @@
-"""Stage ``macroscale``: stick-slip of the rigid body pulled through a spring, on the chain's contact and mu."""
+"""Stage ``macroscale``.
+
+Stick-slip of the rigid body pulled through a spring, on the chain's contact and mu.
+"""
 
 from __future__ import annotations
 
@@ -33,7 +36,10 @@ _SECTIONS = ("kinematics", "load", "geometry", "material", "counter_material", "
 
 
 class Macroscale(Stage):
-    """The rigid body on the contact (MDR springs or the rough contact's stiffness), with the squeeze film when wet."""
+    """The rigid body on the contact, with the squeeze film when wet.
+
+    The contact is MDR springs or the rough contact's stiffness.
+    """
 
     name = "macroscale"
     produces = (
@@ -51,11 +57,18 @@ class Macroscale(Stage):
     )
 
     def plan(self, scene, demand: Demand) -> Decision:
-        """Run for ``stick_slip``; a ``[lubricant]`` makes the squeeze film share the normal load."""
+        """Run for ``stick_slip``.
+
+        A ``[lubricant]`` makes the squeeze film share the normal load.
+        """
         if not demand.requested("stick_slip"):
             return self.skip("'stick_slip' not requested")
         rough = scene.geometry.profile == "rough"
-        how = "the rough contact's tangential stiffness" if rough else "MDR contact springs of the axisymmetric profile"
+        how = (
+            "the rough contact's tangential stiffness"
+            if rough
+            else "MDR contact springs of the axisymmetric profile"
+        )
         sections = _SECTIONS
         options: dict[str, Any] = {"contact_law": "stiffness" if rough else "mdr"}
         film = ""
@@ -66,8 +79,12 @@ class Macroscale(Stage):
             sections += ("lubricant", "roughness")
             options["squeeze_film"] = True
             film = "; normal load shared with the [lubricant] squeeze film"
-        return self.go(f"outputs request 'stick_slip': rigid body on {how}, {{mu}}{film}", sections=sections,
-                       options=options, wants=("stiffness", "rates", "running_in"))
+        return self.go(
+            f"outputs request 'stick_slip': rigid body on {how}, {{mu}}{film}",
+            sections=sections,
+            options=options,
+            wants=("stiffness", "rates", "running_in"),
+        )
 
     def bind(self, scene, decision: Decision, supplied) -> Decision:
         """Say where mu comes from (and hash its section)."""
@@ -86,19 +103,23 @@ class Macroscale(Stage):
         ]
 
     def run(self, ctx: StageContext) -> StageOutput:
-        """Stick-slip of the rigid body pulled through a spring, on the contact, with the chain's mu."""
+        """Stick-slip of the spring-pulled rigid body on the contact, with the chain's mu."""
         from ...models import macro
         from ...models.bridges import punch_bound
 
         choice = friction_coefficient(ctx.scene, nanoscale_rates(ctx))
         mu, mu_src = choice.mu, choice.source
-        # the rough MDR profile (if the scene has one) is drawn from the chain's stream, never silently a sphere
+        # the rough MDR profile (if the scene has one) is drawn from the
+        # chain's stream, never silently a sphere
         kw: dict[str, Any] = {"mu": mu, "rng": ctx.rng}
         runin = ctx.handoff("running_in")
         fr = runin.values.get("friction") if runin is not None else None
         if fr:
-            # Static and kinetic coefficients at the part (the running-in stage states rule and sources).
-            kw["law"] = macro.ConstantFriction(mu_s=float(fr["mu_static"]), mu_k=float(fr["mu_kinetic"]))
+            # Static and kinetic coefficients at the part (the running-in
+            # stage states rule and sources).
+            kw["law"] = macro.ConstantFriction(
+                mu_s=float(fr["mu_static"]), mu_k=float(fr["mu_kinetic"])
+            )
             mu, mu_src = float(fr["mu_kinetic"]), "running-in: " + str(fr["source"])
         elif choice.mu_static != choice.mu_kinetic:
             kw["law"] = macro.ConstantFriction(mu_s=choice.mu_static, mu_k=choice.mu_kinetic)
@@ -111,17 +132,28 @@ class Macroscale(Stage):
 
             v, geo = stiff.values, scene.geometry
             kc, kc_src, extra = apparent_tangential_stiffness(
-                v["pressure"], v["stiffness"], v["force"], normal_force=scene.load.normal_force,
-                apparent_area=geo.apparent_length * geo.apparent_width, E_star=scene.effective_modulus,
-                shear_to_normal=scene.effective_shear_modulus / scene.effective_modulus)
+                v["pressure"],
+                v["stiffness"],
+                v["force"],
+                normal_force=scene.load.normal_force,
+                apparent_area=geo.apparent_length * geo.apparent_width,
+                E_star=scene.effective_modulus,
+                shear_to_normal=scene.effective_shear_modulus / scene.effective_modulus,
+            )
             kw["contact_stiffness"] = kc
             bound = extra["bound"]
         else:
             kw["contact_law"] = "mdr"
             kc, kc_src = None, "MDR springs of the [geometry] profile (load dependent)"
             if scene.geometry.profile == "sphere" and scene.load.normal_force > 0:
-                # Apparent area of a sphere: the Hertz circle at the load; its bonded-punch bound is 2E*a.
-                a = (3.0 * scene.load.normal_force * scene.geometry.radius / (4.0 * scene.effective_modulus)) ** (1 / 3)
+                # Apparent area of a sphere: the Hertz circle at the load;
+                # its bonded-punch bound is 2E*a.
+                a = (
+                    3.0
+                    * scene.load.normal_force
+                    * scene.geometry.radius
+                    / (4.0 * scene.effective_modulus)
+                ) ** (1 / 3)
                 bound = punch_bound(np.pi * a * a, scene.effective_modulus)
         film = bool(ctx.plan.options.get("squeeze_film")) and ctx.scene.lubricant is not None
         if film:
@@ -142,25 +174,46 @@ class Macroscale(Stage):
         if np.count_nonzero(ok) >= 2:
             acc = np.interp(t, 0.5 * (t[1:] + t[:-1])[ok], np.diff(v_arr)[ok] / step[ok])
         f_contact = np.asarray(res.drive_force, float) - scene.kinematics.mass * acc
-        np.savez(ctx.workdir / "trajectory.npz", t=t, x=res.x, velocity=res.v, friction=res.drive_force,
-                 drive_force=res.drive_force, contact_force=f_contact, phase=res.phase,
-                 mu_s_N=mu_s * scene.load.normal_force, mu_k_N=mu_k * scene.load.normal_force)
+        np.savez(
+            ctx.workdir / "trajectory.npz",
+            t=t,
+            x=res.x,
+            velocity=res.v,
+            friction=res.drive_force,
+            drive_force=res.drive_force,
+            contact_force=f_contact,
+            phase=res.phase,
+            mu_s_N=mu_s * scene.load.normal_force,
+            mu_k_N=mu_k * scene.load.normal_force,
+        )
         slips = [e for e in res.events if str(e.get("to_phase", "")).startswith("slip")]
         resticks = [e for e in res.events if e.get("to_phase") == "stick"]
         from ...models.macro.reference import restick_criterion
 
         # Whether the data allow repeated stick-slip (analytic, constant mu_s/mu_k, contact spring
         # kc or rigid): stated next to what the integration gave.
-        crit = (restick_criterion(scene.kinematics.mass, scene.kinematics.drive_stiffness,
-                                  scene.kinematics.sliding_velocity, scene.load.normal_force, mu_s, mu_k,
-                                  kc or 0.0) if kc is not None or kw.get("contact_law") != "mdr" else None)
+        crit = (
+            restick_criterion(
+                scene.kinematics.mass,
+                scene.kinematics.drive_stiffness,
+                scene.kinematics.sliding_velocity,
+                scene.load.normal_force,
+                mu_s,
+                mu_k,
+                kc or 0.0,
+            )
+            if kc is not None or kw.get("contact_law") != "mdr"
+            else None
+        )
         values = {
             "mu": mu,
             "mu_source": mu_src,
             "contact_stiffness_N_m": kc,
             "contact_stiffness_source": kc_src,
             "contact_stiffness_bound_N_m": bound,
-            "contact_stiffness_bound_source": "bonded punch 2E*sqrt(A/pi) of the apparent area" if bound else None,
+            "contact_stiffness_bound_source": "bonded punch 2E*sqrt(A/pi) of the apparent area"
+            if bound
+            else None,
             "contact_normal_stiffness_N_m": extra.get("normal"),
             "interfacial_stiffness_per_area_N_m3": extra.get("k_int_per_area"),
             "interface_compliance_share": extra.get("interface_share"),
@@ -168,7 +221,8 @@ class Macroscale(Stage):
             "mu_kinetic": mu_k,
             "n_transitions": int(res.n_transitions),
             "n_slip_events": len(slips),
-            # stick phases: the initial one (the body starts at rest) plus every re-stick after a slip
+            # stick phases: the initial one (the body starts at rest) plus
+            # every re-stick after a slip
             "n_stick_phases": 1 + len(resticks),
             "restick_criterion": crit,
             "max_drive_force_N": float(np.max(res.drive_force)),
@@ -179,12 +233,27 @@ class Macroscale(Stage):
             # Below zero the body re-sticks; a positive minimum after the first slip means steady
             # sliding with an oscillating velocity (e.g. the contact spring's pre-slip creep).
             "min_velocity_after_first_slip_m_s": (
-                float(np.min(v_arr[t > slips[0]["t"]])) if slips and np.any(t > slips[0]["t"]) else None),
+                float(np.min(v_arr[t > slips[0]["t"]]))
+                if slips and np.any(t > slips[0]["t"])
+                else None
+            ),
         }
-        units = {"mu": "1", "contact_stiffness_N_m": "N/m", "contact_stiffness_bound_N_m": "N/m",
-                 "contact_normal_stiffness_N_m": "N/m", "interfacial_stiffness_per_area_N_m3": "N/m^3",
-                 "interface_compliance_share": "1", "mu_static": "1", "mu_kinetic": "1", "max_drive_force_N": "N", "mean_drive_force_N": "N",
-                 "max_velocity_m_s": "m/s", "min_velocity_after_first_slip_m_s": "m/s", "duration_s": "s", "first_slip_time_s": "s"}
+        units = {
+            "mu": "1",
+            "contact_stiffness_N_m": "N/m",
+            "contact_stiffness_bound_N_m": "N/m",
+            "contact_normal_stiffness_N_m": "N/m",
+            "interfacial_stiffness_per_area_N_m3": "N/m^3",
+            "interface_compliance_share": "1",
+            "mu_static": "1",
+            "mu_kinetic": "1",
+            "max_drive_force_N": "N",
+            "mean_drive_force_N": "N",
+            "max_velocity_m_s": "m/s",
+            "min_velocity_after_first_slip_m_s": "m/s",
+            "duration_s": "s",
+            "first_slip_time_s": "s",
+        }
         files = {"trajectory": "trajectory.npz"}
         message = str(res.message)
         if film:
@@ -192,26 +261,49 @@ class Macroscale(Stage):
             W = ctx.scene.load.normal_force
             fc = np.asarray(sq.contact_force)
             touched = np.flatnonzero(fc > 0.0)
-            np.savez(ctx.workdir / "squeeze.npz", t=sq.t, gap=sq.gap, log_gap=sq.log_gap, film_force=sq.film_force,
-                     contact_force=fc)
+            np.savez(
+                ctx.workdir / "squeeze.npz",
+                t=sq.t,
+                gap=sq.gap,
+                log_gap=sq.log_gap,
+                film_force=sq.film_force,
+                contact_force=fc,
+            )
             files["squeeze"] = "squeeze.npz"
-            values.update({
-                "film_rupture_gap_m": kw["contact_gap"],
-                "film_rupture_gap_source": hc_src,
-                "time_to_solid_contact_s": float(np.asarray(sq.t)[touched[0]]) if touched.size else None,
-                "final_load_share": float(fc[-1] / W),
-                "final_gap_m": float(np.asarray(sq.gap)[-1]),
-                "squeeze_status": int(sq.status),
-                "squeeze_message": str(sq.message),
-            })
-            units.update({"film_rupture_gap_m": "m", "time_to_solid_contact_s": "s", "final_load_share": "1",
-                          "final_gap_m": "m"})
+            values.update(
+                {
+                    "film_rupture_gap_m": kw["contact_gap"],
+                    "film_rupture_gap_source": hc_src,
+                    "time_to_solid_contact_s": float(np.asarray(sq.t)[touched[0]])
+                    if touched.size
+                    else None,
+                    "final_load_share": float(fc[-1] / W),
+                    "final_gap_m": float(np.asarray(sq.gap)[-1]),
+                    "squeeze_status": int(sq.status),
+                    "squeeze_message": str(sq.message),
+                }
+            )
+            units.update(
+                {
+                    "film_rupture_gap_m": "m",
+                    "time_to_solid_contact_s": "s",
+                    "final_load_share": "1",
+                    "final_gap_m": "m",
+                }
+            )
             if sq.status != 0:
-                # Not a failure of the chain: the model says the film has not been squeezed out yet
-                # (h_c below the indentation the load needs, or too short a run).  Say so, invent nothing.
+                # Not a failure of the chain: the model says the film has
+                # not been squeezed out yet (h_c below the indentation the
+                # load needs, or too short a run).  Say so, invent nothing.
                 message += f"; squeeze film: {sq.message}"
-        return StageOutput(values=values, units=units, files=files, method=str(res.method), message=message,
-                           nit=int(res.nit))
+        return StageOutput(
+            values=values,
+            units=units,
+            files=files,
+            method=str(res.method),
+            message=message,
+            nit=int(res.nit),
+        )
 
 
 STAGE = Macroscale()

@@ -22,7 +22,9 @@ class _watch_progress:
     nothing measurable and never touches the LAMMPS session.
     """
 
-    def __init__(self, path: Path, duration: float, report: Callable[..., None], interval: float = 2.0):
+    def __init__(
+        self, path: Path, duration: float, report: Callable[..., None], interval: float = 2.0
+    ):
         import threading
 
         self.path, self.duration, self.report, self.interval = path, duration, report, interval
@@ -43,7 +45,9 @@ class _watch_progress:
         while not self._stop.wait(self.interval):
             t = self._last_time()
             if t is not None and self.duration > 0:
-                self.report(t / self.duration, f"simulated {t * 1e9:.2f} of {self.duration * 1e9:.2f} ns")
+                self.report(
+                    t / self.duration, f"simulated {t * 1e9:.2f} of {self.duration * 1e9:.2f} ns"
+                )
 
     def __enter__(self):
         self._thread.start()
@@ -69,31 +73,57 @@ def _draw_mu(ax, result, run) -> None:
 
 
 class Nanoscale(Stage):
-    """MCA on LAMMPS: measures the rates (friction coefficient, diffusion, transfer) of ``[nanoscale]``."""
+    """MCA on LAMMPS: measures the rates.
+
+    The friction coefficient, diffusion and transfer of ``[nanoscale]``.
+    """
 
     name = "nanoscale"
-    produces = (Handoff("rates", units=Rates.units(), doc="rates.json: the shared Rates record (C1/C4) + diagnostics"),)
+    produces = (
+        Handoff(
+            "rates",
+            units=Rates.units(),
+            doc="rates.json: the shared Rates record (C1/C4) + diagnostics",
+        ),
+    )
     outputs = _OUTPUTS
     sections = ("nanoscale", "material", "counter_material")
     data = ("data/lammps_inputs",)
     figures = (
-        Figure("mca_snapshot", "traj", _draw_snapshot, "MCA snapshot (cf. Fig. 9)",
-               "MCA snapshot at the end of the nanoscale run (cf. Fig. 9): automata coloured by body"),
-        Figure("mu_t", "friction", _draw_mu, "friction coefficient mu(t), nanoscale",
-               "Friction coefficient mu(t) = F_friction / F_normal of the nanoscale run"),
+        Figure(
+            "mca_snapshot",
+            "traj",
+            _draw_snapshot,
+            "MCA snapshot (cf. Fig. 9)",
+            "MCA snapshot at the end of the nanoscale run (cf. Fig. 9): automata coloured by body",
+        ),
+        Figure(
+            "mu_t",
+            "friction",
+            _draw_mu,
+            "friction coefficient mu(t), nanoscale",
+            "Friction coefficient mu(t) = F_friction / F_normal of the nanoscale run",
+        ),
     )
 
     def plan(self, scene, demand: Demand) -> Decision:
         """Run LAMMPS only with ``[nanoscale]``, when rates are requested or consumed downstream."""
         req = demand.requested(*_OUTPUTS)
         if "mca_snapshot" in req and scene.nanoscale is None:
-            raise SceneError("[nanoscale]", "a [nanoscale] section when outputs request 'mca_snapshot'", "nothing",
-                             scene.source)
+            raise SceneError(
+                "[nanoscale]",
+                "a [nanoscale] section when outputs request 'mca_snapshot'",
+                "nothing",
+                scene.source,
+            )
         consumers = demand.wants("rates")
         if scene.rates is not None:
             return self.skip("rates given in [rates]: LAMMPS not started", rates_source="scene")
         if scene.nanoscale is None:
-            return self.skip("no [nanoscale] or [rates] section: friction coefficient from [load]", rates_source="load")
+            return self.skip(
+                "no [nanoscale] or [rates] section: friction coefficient from [load]",
+                rates_source="load",
+            )
         if not (req or consumers):
             return self.skip("no requested output needs nanoscale rates", rates_source="none")
         why = [f"outputs request {sorted(req)}"] if req else []
@@ -102,14 +132,24 @@ class Nanoscale(Stage):
         return self.go(
             "MCA on LAMMPS: " + "; ".join(why),
             sections=self.sections,
-            options={"rates_source": "nanoscale", "preset": scene.nanoscale.preset, "ranks": scene.nanoscale.ranks},
+            options={
+                "rates_source": "nanoscale",
+                "preset": scene.nanoscale.preset,
+                "ranks": scene.nanoscale.ranks,
+            },
         )
 
     def preflight(self, scene, decision: Decision) -> list[str]:
-        """Estimate the LAMMPS wall time before it starts, from throughput measured on this machine."""
+        """Estimate the LAMMPS wall time before it starts.
+
+        From throughput measured on this machine.
+        """
         est = estimate_wall_time(scene)
-        return [f"estimated wall time ~{est['seconds']:.3g} s ({est['atoms']:.3g} automata x {est['steps']:.3g} "
-                f"steps at {est['rate']:.3g} automaton-steps/s, {est['rate_source']})"]
+        return [
+            f"estimated wall time ~{est['seconds']:.3g} s "
+            f"({est['atoms']:.3g} automata x {est['steps']:.3g} "
+            f"steps at {est['rate']:.3g} automaton-steps/s, {est['rate_source']})"
+        ]
 
     def run(self, ctx: StageContext) -> StageOutput:
         """LAMMPS MCA friction run -> ``rates.json`` (plus friction.csv, trajectory, meta.json)."""
@@ -121,8 +161,11 @@ class Nanoscale(Stage):
         out = ctx.workdir / "mca"
         seed = lammps_seed(ctx.rng)
         with _watch_progress(out / "friction.csv", params.duration, ctx.progress):
-            # An interrupted run left restart files in the (kept) partial folder: continue from them.
-            res, resume_info = run_mca_resuming(params, out, seed=seed, ranks=ctx.scene.nanoscale.ranks)
+            # An interrupted run left restart files in the (kept) partial
+            # folder: continue from them.
+            res, resume_info = run_mca_resuming(
+                params, out, seed=seed, ranks=ctx.scene.nanoscale.ranks
+            )
         _remember_throughput(ctx.scene, out / "meta.json")
         rates_path = out / "rates.json"
         if not rates_path.exists():
@@ -132,8 +175,13 @@ class Nanoscale(Stage):
         values = scalars(rates)
         values["meta"] = scalars(meta)
         files = {"rates": "mca/rates.json"}
-        for key, name in (("friction", "friction.csv"), ("traj", "traj.lammpstrj"), ("meta", "meta.json"),
-                          ("log", "run.log"), ("profile", "profile.npz")):
+        for key, name in (
+            ("friction", "friction.csv"),
+            ("traj", "traj.lammpstrj"),
+            ("meta", "meta.json"),
+            ("log", "run.log"),
+            ("profile", "profile.npz"),
+        ):
             if (out / name).exists():
                 files[key] = f"mca/{name}"
         return StageOutput(
@@ -143,13 +191,19 @@ class Nanoscale(Stage):
             method=str(res.get("method", "mca")),
             message=str(res.get("message", "")),
             nit=int(res.get("nit", 0) or 0),
-            provenance={"lammps_seed_from": ctx.seed, **resume_info, "params": scalars(dict(vars(params))),
-                        "rates_provenance": rates.get("provenance", {}), "warnings": rates.get("warnings", [])},
+            provenance={
+                "lammps_seed_from": ctx.seed,
+                **resume_info,
+                "params": scalars(dict(vars(params))),
+                "rates_provenance": rates.get("provenance", {}),
+                "warnings": rates.get("warnings", []),
+            },
         )
 
 
-#: Automaton-steps per second per rank when nothing was measured on this machine yet:
-#: benchmarks/results/mca_throughput.csv (bpm/spring/plastic, 2D, 1 rank, 2k-40k automata: 5.7-7.1e6).
+#: Automaton-steps per second per rank when nothing was measured on this
+#: machine yet: benchmarks/results/mca_throughput.csv (bpm/spring/plastic,
+#: 2D, 1 rank, 2k-40k automata: 5.7-7.1e6).
 SHIPPED_THROUGHPUT = 6e6
 
 
@@ -187,19 +241,32 @@ def estimate_wall_time(scene) -> dict:
     if params.dim == 2:
         atoms = params.box_length * 2 * params.body_height / (math.sqrt(3) / 2 * d * d)
     else:
-        atoms = params.box_length * params.box_width * 2 * params.body_height / (d**3 / math.sqrt(2))
+        atoms = (
+            params.box_length * params.box_width * 2 * params.body_height / (d**3 / math.sqrt(2))
+        )
     steps = params.duration / dt_s
     try:
         rate = float(json.loads(_throughput_file().read_text())[_throughput_key(params, ranks)])
         source = "measured on this machine by the last run"
     except (OSError, ValueError, KeyError, TypeError):
-        rate, source = SHIPPED_THROUGHPUT * ranks, "shipped benchmark figure (nothing measured here yet)"
-    return {"atoms": atoms, "steps": steps, "rate": rate, "rate_source": source, "seconds": atoms * steps / rate,
-            "key": _throughput_key(params, ranks)}
+        rate, source = (
+            SHIPPED_THROUGHPUT * ranks,
+            "shipped benchmark figure (nothing measured here yet)",
+        )
+    return {
+        "atoms": atoms,
+        "steps": steps,
+        "rate": rate,
+        "rate_source": source,
+        "seconds": atoms * steps / rate,
+        "key": _throughput_key(params, ranks),
+    }
 
 
 def _remember_throughput(scene, meta_path: Path) -> None:
-    """Keep this machine's measured throughput for the next estimate (best effort: never fails a run).
+    """Keep this machine's measured throughput for the next estimate.
+
+    Best effort: never fails a run.
 
     Stored per *estimated* automaton, so that the estimate's count (which misses the
     rigid layers and the roughness) and the measured rate cancel: the next estimate of
