@@ -52,6 +52,8 @@ def print_table(title: str, rows: Sequence[dict], width: int = 16) -> None:
         cells = []
         for k in keys:
             v = r.get(k, "")
-            is_num = isinstance(v, float) or (hasattr(v, "dtype") and getattr(v.dtype, "kind", "") == "f")
+            is_num = isinstance(v, float) or (
+                hasattr(v, "dtype") and getattr(v.dtype, "kind", "") == "f"
+            )
             cells.append(f"{float(v):>{width}.5g}" if is_num else f"{str(v):>{width}s}")
         print(" ".join(cells))

@@ -44,7 +44,16 @@ from typing import Any
 from .errors import ParameterError, SetupError
 from .jsonio import atomic_write_json, atomic_write_text, canonical_json
 
-__all__ = ["Vary", "parse_vary", "expand_points", "point_id", "run_point", "run_sweep", "SweepResult", "flatten_values"]
+__all__ = [
+    "Vary",
+    "parse_vary",
+    "expand_points",
+    "point_id",
+    "run_point",
+    "run_sweep",
+    "SweepResult",
+    "flatten_values",
+]
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -67,7 +76,8 @@ class Vary:
 
 
 def _literal(token: str) -> Any:
-    # A TOML literal (number, bool, quoted string, array); a bare word is a string (e.g. a law name).
+    # A TOML literal (number, bool, quoted string, array); a bare word is a
+    # string (e.g. a law name).
     tok = token.strip()
     try:
         return tomllib.loads(f"v = {tok}")["v"]
@@ -84,7 +94,9 @@ def parse_vary(text: str) -> Vary:
         One line naming ``--vary`` and the expected form.
     """
     if "=" not in text or "." not in text.split("=", 1)[0]:
-        raise ParameterError("--vary", "section.field=v1,v2,... (e.g. nanoscale.pressure=50e6,150e6)", text)
+        raise ParameterError(
+            "--vary", "section.field=v1,v2,... (e.g. nanoscale.pressure=50e6,150e6)", text
+        )
     name, vals = text.split("=", 1)
     section, _, fld = name.strip().partition(".")
     if not section or not fld or "." in fld:
@@ -97,11 +109,17 @@ def parse_vary(text: str) -> Vary:
 
 def point_id(vary: Mapping[str, Any], seed: int) -> str:
     """Stable short id of a point (folder name): hash of its varied values and seed."""
-    return hashlib.sha256(canonical_json({"vary": dict(vary), "seed": int(seed)}).encode()).hexdigest()[:12]
+    return hashlib.sha256(
+        canonical_json({"vary": dict(vary), "seed": int(seed)}).encode()
+    ).hexdigest()[:12]
 
 
-def expand_points(base: Mapping[str, Any], axes: Sequence[Vary], seeds: int) -> list[dict[str, Any]]:
-    """All points ``{"vary": {key: value}, "seed": int, "id": str}`` of the product, seeds innermost.
+def expand_points(
+    base: Mapping[str, Any], axes: Sequence[Vary], seeds: int
+) -> list[dict[str, Any]]:
+    """All points ``{"vary": {key: value}, "seed": int, "id": str}`` of the product.
+
+    Seeds innermost.
 
     Seeds are ``[scene].seed + i`` for ``i < seeds`` (the scene's master seed when ``seeds == 1``).
     """
@@ -127,13 +145,15 @@ def _default_seed() -> int:
 
 
 def point_scene_dict(base: Mapping[str, Any], vary: Mapping[str, Any], seed: int) -> dict[str, Any]:
-    """The scene mapping of one point: ``base`` with the varied fields and ``[scene].seed`` set."""
+    """Return the scene mapping of one point: ``base`` with its varied fields and seed set."""
     d = copy.deepcopy(dict(base))
     for key, value in vary.items():
         section, fld = key.split(".", 1)
         d.setdefault(section, {})
         if not isinstance(d[section], dict):
-            raise ParameterError(f"--vary {key}", f"[{section}] to be a table", type(d[section]).__name__)
+            raise ParameterError(
+                f"--vary {key}", f"[{section}] to be a table", type(d[section]).__name__
+            )
         d[section][fld] = value
     d.setdefault("scene", {})["seed"] = int(seed)
     return d
@@ -161,12 +181,20 @@ def _one_line(exc: BaseException) -> str:
     return text if ":" in text[:60] else f"{type(exc).__name__}: {text}"
 
 
-def run_point(base: Mapping[str, Any], source: str, vary: Mapping[str, Any], seed: int, out_dir: str,
-              cache_dir: str, figures: bool = False) -> dict[str, Any]:
+def run_point(
+    base: Mapping[str, Any],
+    source: str,
+    vary: Mapping[str, Any],
+    seed: int,
+    out_dir: str,
+    cache_dir: str,
+    figures: bool = False,
+) -> dict[str, Any]:
     """Run one point through the chain (a Dask task; also callable directly).
 
-    Returns ``{"vary", "seed", "id", "status": "ok"|"failed", "values", "units", "message", "time_s", "report"}``;
-    never raises for a failing point (the failure is the one-line ``message``).
+    Returns ``{"vary", "seed", "id", "status": "ok"|"failed", "values", "units", "message",
+    "time_s", "report"}``; never raises for a failing point (the failure is the one-line
+    ``message``).
     """
     from .chain import run_chain
     from .scene import parse_scene
@@ -174,14 +202,27 @@ def run_point(base: Mapping[str, Any], source: str, vary: Mapping[str, Any], see
     pid = point_id(vary, seed)
     out = Path(out_dir)
     t0 = time.perf_counter()
-    row: dict[str, Any] = {"vary": dict(vary), "seed": int(seed), "id": pid, "status": "failed", "values": {},
-                           "units": {}, "message": "", "time_s": 0.0, "report": str(out / "report.json")}
+    row: dict[str, Any] = {
+        "vary": dict(vary),
+        "seed": int(seed),
+        "id": pid,
+        "status": "failed",
+        "values": {},
+        "units": {},
+        "message": "",
+        "time_s": 0.0,
+        "report": str(out / "report.json"),
+    }
     try:
         scene = parse_scene(point_scene_dict(base, vary, seed), source=source)
         try:
-            kwargs = dict(cache_dir=cache_dir, quiet=True, figures=figures, on_stage=_stage_event(pid))
+            kwargs = dict(
+                cache_dir=cache_dir, quiet=True, figures=figures, on_stage=_stage_event(pid)
+            )
             run_chain(scene, out, **kwargs)
-        except TypeError as exc:  # a chain entry point without on_stage: run without per-stage events
+        except (
+            TypeError
+        ) as exc:  # a chain entry point without on_stage: run without per-stage events
             if "on_stage" not in str(exc):
                 raise
             run_chain(scene, out, cache_dir=cache_dir, quiet=True, figures=figures)
@@ -221,7 +262,9 @@ def _stage_event(pid: str) -> Callable[[Any], None] | None:
         plan = getattr(chain_run, "plan", None)
         total = len(getattr(plan, "running", []) or []) or max(len(done), 1)
         last = done[-1] if done else ""
-        worker.log_event("tribolmp-sweep", {"id": pid, "stage": last, "done": len(done), "total": total})
+        worker.log_event(
+            "tribolmp-sweep", {"id": pid, "stage": last, "done": len(done), "total": total}
+        )
 
     return _event
 
@@ -239,10 +282,13 @@ class SweepResult:
     resumed: int = 0
 
     def to_json_dict(self) -> dict[str, Any]:
-        """The ``tribolmp sweep --json`` contract."""
+        """Return the ``tribolmp sweep --json`` contract."""
         return {
-            "points": [{k: p[k] for k in ("vary", "seed", "status", "values", "message")} | {"id": p["id"], "units": p.get("units", {})}
-                       for p in self.points],
+            "points": [
+                {k: p[k] for k in ("vary", "seed", "status", "values", "message")}
+                | {"id": p["id"], "units": p.get("units", {})}
+                for p in self.points
+            ],
             "table": str(self.table_csv),
             "table_json": str(self.table_json),
             "workers": self.workers,
@@ -264,7 +310,11 @@ class _Bar:
             frac = self.done / self.total
             n = int(round(frac * self.width))
             bar = "[" + "#" * n + "." * (self.width - n) + f"] {self.done}/{self.total}"
-            print(f"{bar} {text} ({time.perf_counter() - self.t0:.1f} s)", file=self.stream, flush=True)
+            print(
+                f"{bar} {text} ({time.perf_counter() - self.t0:.1f} s)",
+                file=self.stream,
+                flush=True,
+            )
 
 
 def _label(vary: Mapping[str, Any], seed: int) -> str:
@@ -320,15 +370,22 @@ def run_sweep(
     from .scene import load_scene
 
     scene_path = Path(scene_path)
-    load_scene(scene_path)  # validate the base scene before starting a cluster (one-line SceneError)
+    load_scene(
+        scene_path
+    )  # validate the base scene before starting a cluster (one-line SceneError)
     base = tomllib.loads(scene_path.read_text())
     points = expand_points(base, axes, seeds)
     # Validate every point's scene up front: a bad --vary value is an input error, not a failed run.
     from .scene import parse_scene
 
     for p in points:
-        parse_scene(point_scene_dict(base, p["vary"], p["seed"]), source=f"{scene_path} with {_label(p['vary'], p['seed'])}")
-    if scheduler is None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        parse_scene(
+            point_scene_dict(base, p["vary"], p["seed"]),
+            source=f"{scene_path} with {_label(p['vary'], p['seed'])}",
+        )
+    if scheduler is None and (
+        isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
+    ):
         raise ParameterError("--workers", "an integer >= 1", workers)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -355,7 +412,9 @@ def run_sweep(
     resumed = len(rows)
     n_workers = workers
     if todo:
-        n_workers = _run_on_dask(todo, base, source, out, cache, workers, scheduler, resources, bar, rows)
+        n_workers = _run_on_dask(
+            todo, base, source, out, cache, workers, scheduler, resources, bar, rows
+        )
     ordered = [rows[p["id"]] for p in points]
     wall = time.perf_counter() - t0
     table_csv, table_json = write_table(out, axes, ordered)
@@ -365,8 +424,10 @@ def run_sweep(
     return res
 
 
-def make_client(workers: int = 2, scheduler: str | None = None, resources: Mapping[str, float] | None = None):
-    """The sweep's Dask client: ``(client, cluster)``; ``cluster`` is None with ``scheduler``.
+def make_client(
+    workers: int = 2, scheduler: str | None = None, resources: Mapping[str, float] | None = None
+):
+    """Open the sweep's Dask client: ``(client, cluster)``; ``cluster`` is None with ``scheduler``.
 
     The LocalCluster is bound to 127.0.0.1 with no dashboard, one thread per
     worker process (the benchmark uses the same engine as the sweep).
@@ -374,24 +435,37 @@ def make_client(workers: int = 2, scheduler: str | None = None, resources: Mappi
     try:
         from distributed import Client, LocalCluster
     except ImportError:  # pragma: no cover - a core dependency
-        raise SetupError("tribolmp sweep: expected the 'distributed' package (pip install distributed), got ImportError") from None
+        raise SetupError(
+            "tribolmp sweep: expected the 'distributed' "
+            "package (pip install distributed), got ImportError"
+        ) from None
     cluster = None
     if scheduler is None:
-        # Loopback only (scheduler, workers and their HTTP endpoints on 127.0.0.1, free ports: a busy
-        # 8787 is no obstacle): nothing listens beyond this machine.  One thread per worker
+        # Loopback only (scheduler, workers and their HTTP endpoints on 127.0.0.1, free ports: a
+        # busy 8787 is no obstacle): nothing listens beyond this machine.  One thread per worker
         # process: the chain's numpy/LAMMPS work is not GIL-free, processes give real parallelism.
         # Tasks that reserve resources (--resources MPI=R) need workers that have them: each local
         # worker gets exactly one task's worth, so a worker runs one such task at a time.
         extra = {"resources": dict(resources)} if resources else {}
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                               dashboard_address="127.0.0.1:0", worker_dashboard_address="127.0.0.1:0", silence_logs=40,
-                               **extra)
+        cluster = LocalCluster(
+            n_workers=workers,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address="127.0.0.1:0",
+            worker_dashboard_address="127.0.0.1:0",
+            silence_logs=40,
+            **extra,
+        )
         client = Client(cluster)
     else:
         try:
             client = Client(scheduler, timeout=30)
         except (OSError, TimeoutError) as exc:
-            raise SetupError(f"--scheduler: expected a reachable Dask scheduler, got {scheduler} ({_one_line(exc)})") from None
+            raise SetupError(
+                "--scheduler: expected a reachable Dask "
+                f"scheduler, got {scheduler} ({_one_line(exc)})"
+            ) from None
     return client, cluster
 
 
@@ -406,7 +480,10 @@ def _run_on_dask(todo, base, source, out, cache, workers, scheduler, resources, 
         def _on_event(event):
             _, msg = event if isinstance(event, tuple) else (None, event)
             if isinstance(msg, dict) and msg.get("id") in labels:
-                bar.line(f"{labels[msg['id']]}: stage {msg.get('done')}/{msg.get('total')} {msg.get('stage', '')} done")
+                bar.line(
+                    f"{labels[msg['id']]}: stage "
+                    f"{msg.get('done')}/{msg.get('total')} {msg.get('stage', '')} done"
+                )
 
         try:
             client.subscribe_topic("tribolmp-sweep", _on_event)
@@ -416,9 +493,18 @@ def _run_on_dask(todo, base, source, out, cache, workers, scheduler, resources, 
 
         def _submit(p, attempt):
             pdir = out / "points" / p["id"]
-            return client.submit(run_point, base, source, p["vary"], p["seed"], str(pdir), str(cache),
-                                 key=f"tribolmp-point-{attempt}-{p['id']}", pure=False,
-                                 resources=dict(resources) if resources else None)
+            return client.submit(
+                run_point,
+                base,
+                source,
+                p["vary"],
+                p["seed"],
+                str(pdir),
+                str(cache),
+                key=f"tribolmp-point-{attempt}-{p['id']}",
+                pure=False,
+                resources=dict(resources) if resources else None,
+            )
 
         futures = [_submit(p, 0) for p in todo]
         bar.line(f"{len(futures)} point(s) submitted")
@@ -426,10 +512,14 @@ def _run_on_dask(todo, base, source, out, cache, workers, scheduler, resources, 
         for fut in as_completed(futures):
             row = _row_of(fut, by_id, out)
             if row["status"] != "ok":
-                # Two points sharing a stage's inputs may compute it at the same moment and one of them loses
-                # the race for the cache folder: each failed point runs once more, on the committed stages.
+                # Two points sharing a stage's inputs may compute it at the same
+                # moment and one of them loses the race for the cache folder:
+                # each failed point runs once more, on the committed stages.
                 retry.append(by_id[row["id"]])
-                bar.line(f"{_label(row['vary'], row['seed'])}: failed ({row['message']}); will retry once")
+                bar.line(
+                    f"{_label(row['vary'], row['seed'])}: "
+                    f"failed ({row['message']}); will retry once"
+                )
                 continue
             _record(row, rows, bar)
         for fut in as_completed([_submit(p, 1) for p in retry]):
@@ -449,8 +539,17 @@ def _row_of(fut, by_id, out: Path) -> dict[str, Any]:
     except Exception as exc:  # noqa: BLE001 - a worker died: the point failed, the others go on
         pid = str(fut.key).rsplit("-", 1)[-1]
         p = by_id[pid]
-        row = {"vary": p["vary"], "seed": p["seed"], "id": pid, "status": "failed", "values": {}, "units": {},
-               "message": _one_line(exc), "time_s": 0.0, "report": ""}
+        row = {
+            "vary": p["vary"],
+            "seed": p["seed"],
+            "id": pid,
+            "status": "failed",
+            "values": {},
+            "units": {},
+            "message": _one_line(exc),
+            "time_s": 0.0,
+            "report": "",
+        }
         atomic_write_json(out / "points" / pid / "point.json", row)
         return row
 
@@ -477,7 +576,10 @@ def _numeric(v) -> bool:
 
 
 def summarize(axes: Sequence[Vary], rows: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
-    """Mean and standard error over seeds of every numeric value, per combination of varied values."""
+    """Mean and standard error over seeds of every numeric value.
+
+    Per combination of varied values.
+    """
     groups: dict[str, list[Mapping[str, Any]]] = {}
     for r in rows:
         if r["status"] == "ok":
@@ -485,25 +587,48 @@ def summarize(axes: Sequence[Vary], rows: Sequence[Mapping[str, Any]]) -> list[d
     out = []
     for _, rs in groups.items():
         keys = sorted({k for r in rs for k, v in r["values"].items() if _numeric(v)})
-        entry: dict[str, Any] = {"vary": dict(rs[0]["vary"]), "n_seeds": len(rs), "mean": {}, "sem": {}}
+        entry: dict[str, Any] = {
+            "vary": dict(rs[0]["vary"]),
+            "n_seeds": len(rs),
+            "mean": {},
+            "sem": {},
+        }
         for k in keys:
             xs = [r["values"][k] for r in rs if _numeric(r["values"].get(k))]
             m = sum(xs) / len(xs)
             entry["mean"][k] = m
             # Standard error of the mean over seeds (None for one seed: no spread to measure).
-            entry["sem"][k] = (math.sqrt(sum((x - m) ** 2 for x in xs) / (len(xs) - 1) / len(xs)) if len(xs) > 1 else None)
+            entry["sem"][k] = (
+                math.sqrt(sum((x - m) ** 2 for x in xs) / (len(xs) - 1) / len(xs))
+                if len(xs) > 1
+                else None
+            )
         out.append(entry)
     return out
 
 
-def write_table(out: Path, axes: Sequence[Vary], rows: Sequence[Mapping[str, Any]]) -> tuple[Path, Path]:
-    """``sweep.csv`` (one row per point) and ``sweep.json`` (rows, units, per-combination mean and sem)."""
+def write_table(
+    out: Path, axes: Sequence[Vary], rows: Sequence[Mapping[str, Any]]
+) -> tuple[Path, Path]:
+    """``sweep.csv`` (one row per point) and ``sweep.json``.
+
+    The JSON holds the rows, units and the per-combination mean and sem.
+    """
     vkeys = [a.key for a in axes]
-    value_keys = sorted({k for r in rows for k, v in r["values"].items() if not isinstance(v, (list, dict))})
+    value_keys = sorted(
+        {k for r in rows for k, v in r["values"].items() if not isinstance(v, (list, dict))}
+    )
     units: dict[str, str] = {}
     for r in rows:
         units.update(r.get("units", {}))
-    header = ["id", *vkeys, "seed", "status", *[f"{k} [{units[k]}]" if k in units else k for k in value_keys], "message"]
+    header = [
+        "id",
+        *vkeys,
+        "seed",
+        "status",
+        *[f"{k} [{units[k]}]" if k in units else k for k in value_keys],
+        "message",
+    ]
     lines = []
     import io
 
@@ -537,8 +662,13 @@ def _find(keys: Iterable[str], *names: str) -> str | None:
     return None
 
 
-def draw_figures(out: Path, axes: Sequence[Vary], rows: Sequence[Mapping[str, Any]], map_keys: Iterable[str] = ()) -> dict[str, str]:
-    """mu against pressure per velocity (error bars) and colour maps of requested scalars; returns name -> path."""
+def draw_figures(
+    out: Path, axes: Sequence[Vary], rows: Sequence[Mapping[str, Any]], map_keys: Iterable[str] = ()
+) -> dict[str, str]:
+    """Draw mu against pressure per velocity and colour maps of requested scalars.
+
+    mu carries error bars; returns name -> path.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -554,20 +684,35 @@ def draw_figures(out: Path, axes: Sequence[Vary], rows: Sequence[Mapping[str, An
     all_keys = sorted({k for s in summary for k in s["mean"]})
     mu = _find(all_keys, "mu")
     pkey = _find(vkeys, "pressure", "pressure_Pa", "normal_force")
-    vkey = _find([k for k in vkeys if k != pkey], "sliding_velocity", "sliding_velocity_m_s", "velocity")
+    vkey = _find(
+        [k for k in vkeys if k != pkey], "sliding_velocity", "sliding_velocity_m_s", "velocity"
+    )
     if mu is not None and pkey is not None:
         fig, ax = plt.subplots(figsize=(5.5, 4))
         groups: dict[Any, list] = {}
         for s in summary:
             groups.setdefault(s["vary"].get(vkey) if vkey else None, []).append(s)
-        for v, ss in sorted(groups.items(), key=lambda kv: (kv[0] is None, kv[0] if _numeric(kv[0]) else str(kv[0]))):
+        for v, ss in sorted(
+            groups.items(), key=lambda kv: (kv[0] is None, kv[0] if _numeric(kv[0]) else str(kv[0]))
+        ):
             ss = sorted(ss, key=lambda s: s["vary"][pkey])
             xs = [s["vary"][pkey] for s in ss]
             ys = [s["mean"].get(mu) for s in ss]
             err_key = _error_key(mu, ss[0]["mean"])
-            errs = [s["sem"].get(mu) if s["sem"].get(mu) is not None else (s["mean"].get(err_key) if err_key else None) or 0.0
-                    for s in ss]
-            ax.errorbar(xs, ys, yerr=errs, marker="o", capsize=3, label=f"{vkey.split('.')[-1]} = {v}" if vkey else None)
+            errs = [
+                s["sem"].get(mu)
+                if s["sem"].get(mu) is not None
+                else (s["mean"].get(err_key) if err_key else None) or 0.0
+                for s in ss
+            ]
+            ax.errorbar(
+                xs,
+                ys,
+                yerr=errs,
+                marker="o",
+                capsize=3,
+                label=f"{vkey.split('.')[-1]} = {v}" if vkey else None,
+            )
         ax.set_xlabel(f"{pkey} (Pa)" if "pressure" in pkey else pkey)
         ax.set_ylabel(f"{mu} (mean ± s.e. over seeds)")
         if vkey:
@@ -580,8 +725,14 @@ def draw_figures(out: Path, axes: Sequence[Vary], rows: Sequence[Mapping[str, An
         figs["mu_vs_pressure"] = str(path)
     if len(vkeys) >= 2:
         xk, yk = vkeys[0], vkeys[1]
-        xs = sorted({s["vary"][xk] for s in summary}, key=lambda v: (not _numeric(v), v if _numeric(v) else str(v)))
-        ys = sorted({s["vary"][yk] for s in summary}, key=lambda v: (not _numeric(v), v if _numeric(v) else str(v)))
+        xs = sorted(
+            {s["vary"][xk] for s in summary},
+            key=lambda v: (not _numeric(v), v if _numeric(v) else str(v)),
+        )
+        ys = sorted(
+            {s["vary"][yk] for s in summary},
+            key=lambda v: (not _numeric(v), v if _numeric(v) else str(v)),
+        )
         for key in list(map_keys) or ([mu] if mu else []):
             if key not in all_keys:
                 continue
@@ -596,8 +747,12 @@ def draw_figures(out: Path, axes: Sequence[Vary], rows: Sequence[Mapping[str, An
                     grid[i, j] = val if np.isnan(grid[i, j]) else 0.5 * (grid[i, j] + val)
             fig, ax = plt.subplots(figsize=(5.5, 4))
             im = ax.imshow(grid, origin="lower", aspect="auto", cmap="viridis")
-            ax.set_xticks(range(len(xs)), [f"{v:g}" if _numeric(v) else str(v) for v in xs], fontsize=8)
-            ax.set_yticks(range(len(ys)), [f"{v:g}" if _numeric(v) else str(v) for v in ys], fontsize=8)
+            ax.set_xticks(
+                range(len(xs)), [f"{v:g}" if _numeric(v) else str(v) for v in xs], fontsize=8
+            )
+            ax.set_yticks(
+                range(len(ys)), [f"{v:g}" if _numeric(v) else str(v) for v in ys], fontsize=8
+            )
             ax.set_xlabel(xk)
             ax.set_ylabel(yk)
             fig.colorbar(im, ax=ax, label=key)

@@ -37,5 +37,8 @@ def versions(names: tuple[str, ...] = DEPENDENCIES) -> dict[str, str]:
 
 
 def data_path(*parts: str) -> Path:
-    """Return the path of a file shipped in ``tribolmp/data/`` (``data_path("scenes", "x.toml")``)."""
+    """Return the path of a file shipped in ``tribolmp/data/``.
+
+    For example ``data_path("scenes", "x.toml")``.
+    """
     return Path(str(resources.files("tribolmp").joinpath("data", *parts)))

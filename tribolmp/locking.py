@@ -62,13 +62,19 @@ def prepare_dir(path: str | os.PathLike | None, field: str = "--out") -> Path:
     try:
         p.mkdir(parents=True, exist_ok=True)
     except FileExistsError:
-        raise SetupError(f"{field}: expected a folder, got {str(p)!r}: a part of that path is a file") from None
+        raise SetupError(
+            f"{field}: expected a folder, got {str(p)!r}: a part of that path is a file"
+        ) from None
     except NotADirectoryError:
-        raise SetupError(f"{field}: expected a folder, got {str(p)!r}: a part of that path is a file") from None
+        raise SetupError(
+            f"{field}: expected a folder, got {str(p)!r}: a part of that path is a file"
+        ) from None
     except PermissionError:
         raise SetupError(f"{field}: cannot create folder {str(p)!r}: permission denied") from None
     except OSError as exc:
-        raise SetupError(f"{field}: cannot create folder {str(p)!r}: {exc.strerror or exc}") from None
+        raise SetupError(
+            f"{field}: cannot create folder {str(p)!r}: {exc.strerror or exc}"
+        ) from None
     if not os.access(p, os.W_OK | os.X_OK):
         raise SetupError(f"{field}: expected a writable folder, got {str(p)!r} (permission denied)")
     return p
@@ -130,8 +136,17 @@ class DirLock:
     ...     run_everything(out)
     """
 
-    def __init__(self, folder, *, wait: bool = False, timeout: float | None = None, what: str = "output folder",
-                 name: str = ".lock", stream=None, quiet: bool = False):
+    def __init__(
+        self,
+        folder,
+        *,
+        wait: bool = False,
+        timeout: float | None = None,
+        what: str = "output folder",
+        name: str = ".lock",
+        stream=None,
+        quiet: bool = False,
+    ):
         self.folder = Path(folder)
         self.path = self.folder / name
         self.wait = wait
@@ -153,7 +168,10 @@ class DirLock:
         try:
             fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o666)
         except OSError as exc:
-            raise SetupError(f"{self.what} {str(self.folder)!r}: cannot create its lock file: {exc.strerror or exc}") from None
+            raise SetupError(
+                f"{self.what} {str(self.folder)!r}: cannot "
+                f"create its lock file: {exc.strerror or exc}"
+            ) from None
         t0 = time.monotonic()
         told = False
         while True:
@@ -163,17 +181,23 @@ class DirLock:
             except OSError as exc:
                 if exc.errno not in (errno.EAGAIN, errno.EACCES, errno.EWOULDBLOCK):
                     os.close(fd)
-                    raise SetupError(f"{self.what} {str(self.folder)!r}: cannot lock it: {exc.strerror or exc}") from None
+                    raise SetupError(
+                        f"{self.what} {str(self.folder)!r}: cannot lock it: {exc.strerror or exc}"
+                    ) from None
             pid = self.holder()
             if not self.wait or (self.timeout is not None and time.monotonic() - t0 > self.timeout):
                 os.close(fd)
                 raise FolderBusyError(
-                    f"{self.what} {str(self.folder)!r} is in use by another tribolmp process (PID {pid}); "
+                    f"{self.what} {str(self.folder)!r} is in use "
+                    f"by another tribolmp process (PID {pid}); "
                     "wait for it to finish or choose another folder"
                 )
             if not told and not self.quiet:
-                print(f"waiting for PID {pid}, which holds {self.what} {str(self.folder)!r}", file=self.stream or sys.stderr,
-                      flush=True)
+                print(
+                    f"waiting for PID {pid}, which holds {self.what} {str(self.folder)!r}",
+                    file=self.stream or sys.stderr,
+                    flush=True,
+                )
                 told = True
             time.sleep(0.2)
         # Record the holder for the next process's message; truncate after locking so a

@@ -327,7 +327,9 @@ def build_dataclass(cls: type, data: dict, prefix: str = "", source: str | None 
     if not isinstance(data, dict):
         raise ParameterError(prefix.rstrip("."), "a table", data, source)
     names = {f.name: f for f in dataclasses.fields(cls) if f.init}
-    aliases = getattr(cls, "__field_aliases__", {})  # old key -> field (params.renamed handles them)
+    aliases = getattr(
+        cls, "__field_aliases__", {}
+    )  # old key -> field (params.renamed handles them)
     for key in data:
         if key not in names and key not in aliases:
             raise ParameterError(
@@ -415,7 +417,9 @@ def renamed(**old_to_new: str):
         __init__.__wrapped__ = init
         cls.__init__ = __init__
         for old, new in old_to_new.items():
-            alias = property(lambda self, _n=new: getattr(self, _n), doc=f"Deprecated alias of ``{new}``.")
+            alias = property(
+                lambda self, _n=new: getattr(self, _n), doc=f"Deprecated alias of ``{new}``."
+            )
             setattr(cls, old, alias)
         cls.__field_aliases__ = {**getattr(cls, "__field_aliases__", {}), **old_to_new}
         return cls

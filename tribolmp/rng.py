@@ -25,7 +25,9 @@ def as_generator(rng: np.random.Generator | int | None) -> np.random.Generator:
         return rng
     if rng is None or isinstance(rng, (int, np.integer)):
         return np.random.default_rng(rng)
-    raise TypeError(f"rng: expected a numpy.random.Generator, an int or None, got {type(rng).__name__}")
+    raise TypeError(
+        f"rng: expected a numpy.random.Generator, an int or None, got {type(rng).__name__}"
+    )
 
 
 def lammps_seed(rng: np.random.Generator) -> int:

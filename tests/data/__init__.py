@@ -20,10 +20,33 @@ DATA_DIR = Path(__file__).resolve().parent
 RECIPES: dict[str, dict] = {
     "tiny_transfer": {
         "generators": [
-            ("make_transfer", dict(n_per_row=8, n_frames=20, velocity=10.0, t_transfer=6, t_detach=8, t_reattach=13,
-                                   n_flicker=0, bond_events=((3, 3, 2), (9, 4, 0), (15, 0, 5)))),
-            ("make_friction", dict(n=400, dt=5e-12, mu=0.25, phi=0.5, sigma_eps=0.02, transient=0.3, tau=1e-10,
-                                   normal=2e-9, velocity=10.0)),
+            (
+                "make_transfer",
+                dict(
+                    n_per_row=8,
+                    n_frames=20,
+                    velocity=10.0,
+                    t_transfer=6,
+                    t_detach=8,
+                    t_reattach=13,
+                    n_flicker=0,
+                    bond_events=((3, 3, 2), (9, 4, 0), (15, 0, 5)),
+                ),
+            ),
+            (
+                "make_friction",
+                dict(
+                    n=400,
+                    dt=5e-12,
+                    mu=0.25,
+                    phi=0.5,
+                    sigma_eps=0.02,
+                    transient=0.3,
+                    tau=1e-10,
+                    normal=2e-9,
+                    velocity=10.0,
+                ),
+            ),
         ],
         "seed": 20261122,
     },

@@ -45,7 +45,8 @@ FOUNDATIONS = {
     "resources",
 }
 LAYER = {"scene": 1, "models": 2, "analysis": 3, "lammps": 3, "chain": 4, "cli": 5, "__main__": 5,
-         # eco (issue 16): campaigns (Dask sweep) and the notebook API compose the chain, like the CLI.
+         # eco (issue 16): campaigns (Dask sweep) and the notebook API
+         # compose the chain, like the CLI.
          "campaign": 5, "notebook": 5}
 #: Downward pairs that are still forbidden (importer package, imported package): the analysis reads
 #: LAMMPS output files only and validates with the foundations, not with the models.

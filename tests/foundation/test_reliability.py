@@ -29,8 +29,14 @@ TINY = str(Path(__file__).parent / "data" / "tiny.toml")
 
 def cli(*args, cwd=None, timeout=120, stdin=None):
     """Run ``python -m tribolmp ARGS``; return the CompletedProcess."""
-    return subprocess.run([sys.executable, "-m", "tribolmp", *map(str, args)], capture_output=True, text=True,
-                          cwd=cwd, timeout=timeout, stdin=stdin)
+    return subprocess.run(
+        [sys.executable, "-m", "tribolmp", *map(str, args)],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        timeout=timeout,
+        stdin=stdin,
+    )
 
 
 def assert_one_line(proc, code):
@@ -43,8 +49,19 @@ def assert_one_line(proc, code):
 
 # --- bad output folders: before issue 12 these were FileExistsError/NotADirectoryError tracebacks,
 # or (--out "") a run written into the working folder.
-@pytest.mark.parametrize("kind", ["file", "under_file", "devnull", "empty", "cache_file", "cache_under_file",
-                                  "cache_devnull", "cache_empty"])
+@pytest.mark.parametrize(
+    "kind",
+    [
+        "file",
+        "under_file",
+        "devnull",
+        "empty",
+        "cache_file",
+        "cache_under_file",
+        "cache_devnull",
+        "cache_empty",
+    ],
+)
 def test_bad_output_folder_is_one_line_exit_2(tmp_path, kind):
     afile = tmp_path / "afile"
     afile.write_text("x")
@@ -91,7 +108,9 @@ def holder_of():
     procs = []
 
     def start(folder):
-        proc = subprocess.Popen([sys.executable, "-c", HOLD, str(folder)], stdout=subprocess.PIPE, text=True)
+        proc = subprocess.Popen(
+            [sys.executable, "-c", HOLD, str(folder)], stdout=subprocess.PIPE, text=True
+        )
         procs.append(proc)
         assert proc.stdout.readline().strip() == "locked"
         return proc
@@ -139,9 +158,28 @@ def test_waiting_lock_gets_it_when_the_holder_ends(tmp_path, holder_of):
 def test_two_runs_sharing_a_cache_compute_each_entry_once(tmp_path):
     """Concurrent runs with one --cache-dir: one computes, the other reuses; both succeed."""
     cache = tmp_path / "cache"
-    procs = [subprocess.Popen([sys.executable, "-m", "tribolmp", "run", TINY, "--out", str(tmp_path / f"o{i}"),
-                               "--cache-dir", str(cache), "--no-figures", "--json", "--quiet"],
-                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for i in range(2)]
+    procs = [
+        subprocess.Popen(
+            [
+                sys.executable,
+                "-m",
+                "tribolmp",
+                "run",
+                TINY,
+                "--out",
+                str(tmp_path / f"o{i}"),
+                "--cache-dir",
+                str(cache),
+                "--no-figures",
+                "--json",
+                "--quiet",
+            ],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        for i in range(2)
+    ]
     outs = [p.communicate(timeout=300) for p in procs]
     assert [p.returncode for p in procs] == [0, 0], [o[1] for o in outs]
     statuses = []
@@ -163,7 +201,9 @@ def test_truncated_cached_file_is_recomputed(tmp_path):
     out = tmp_path / "o"
     assert cli("run", TINY, "--out", out, "--quiet", "--no-figures").returncode == 0
     report = json.loads((out / "report.json").read_text())
-    stage_dir = next(p for p in (out / "cache").iterdir() if p.name.startswith("contact-") and p.is_dir())
+    stage_dir = next(
+        p for p in (out / "cache").iterdir() if p.name.startswith("contact-") and p.is_dir()
+    )
     files = json.loads((stage_dir / "result.json").read_text())["files"]
     victim = stage_dir / sorted(files.values())[0]
     victim.write_bytes(victim.read_bytes()[: victim.stat().st_size // 2])
@@ -190,8 +230,17 @@ def test_cached_rerun_says_from_the_cache(tmp_path):
 def test_results_are_readable_by_others(tmp_path):
     out = tmp_path / "o"
     env = dict(os.environ)
-    proc = subprocess.run(["sh", "-c", f"umask 022 && {sys.executable} -m tribolmp run {TINY} --out {out} "
-                                       "--quiet --no-figures"], capture_output=True, text=True, env=env)
+    proc = subprocess.run(
+        [
+            "sh",
+            "-c",
+            f"umask 022 && {sys.executable} -m tribolmp run {TINY} --out {out} "
+            "--quiet --no-figures",
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+    )
     assert proc.returncode == 0, proc.stderr
     for f in [out / "report.json", *(out / "cache").rglob("result.json")]:
         assert f.stat().st_mode & stat.S_IROTH, f
@@ -237,16 +286,82 @@ def test_closed_stdout_pipe_is_quiet():
     "args, code, field",
     [
         # ValueError traceback from numpy's SeedSequence before issue 12
-        (["contact", "rough", "--seed=-1", "--surface", "x.npy", "--modulus", "1e11", "--pressures", "1e6"], 2, "--seed"),
-        (["tribospec", "simulate", "--contact-stiffness", "0"], 2, "--contact-stiffness"),  # was "not given"
+        (
+            [
+                "contact",
+                "rough",
+                "--seed=-1",
+                "--surface",
+                "x.npy",
+                "--modulus",
+                "1e11",
+                "--pressures",
+                "1e6",
+            ],
+            2,
+            "--seed",
+        ),
+        (
+            ["tribospec", "simulate", "--contact-stiffness", "0"],
+            2,
+            "--contact-stiffness",
+        ),  # was "not given"
         # a 1 m indentation of a 1 cm sphere gave a contact radius of 10 R with exit 0
-        (["contact", "axisymmetric", "--radius", "0.01", "--modulus", "1e11", "--indentation", "1"], 2, "indentation"),
+        (
+            [
+                "contact",
+                "axisymmetric",
+                "--radius",
+                "0.01",
+                "--modulus",
+                "1e11",
+                "--indentation",
+                "1",
+            ],
+            2,
+            "indentation",
+        ),
         # a 1e-30 m gap gave 1.9e21 N with exit 0
-        (["lubrication", "squeeze", "--radius", "1e-3", "--viscosity", "0.1", "--gap", "1e-30", "--velocity", "1e-3"],
-         2, "--gap"),
+        (
+            [
+                "lubrication",
+                "squeeze",
+                "--radius",
+                "1e-3",
+                "--viscosity",
+                "0.1",
+                "--gap",
+                "1e-30",
+                "--velocity",
+                "1e-3",
+            ],
+            2,
+            "--gap",
+        ),
         # the explicit scheme ended at a gap of -0.53 m with status -1 and exit 0
-        (["lubrication", "approach", "--radius", "1e-3", "--viscosity", "0.1", "--load", "10", "--gap", "1e-6",
-          "--duration", "1", "--steps", "10", "--scheme", "explicit", "--json"], 3, "explicit"),
+        (
+            [
+                "lubrication",
+                "approach",
+                "--radius",
+                "1e-3",
+                "--viscosity",
+                "0.1",
+                "--load",
+                "10",
+                "--gap",
+                "1e-6",
+                "--duration",
+                "1",
+                "--steps",
+                "10",
+                "--scheme",
+                "explicit",
+                "--json",
+            ],
+            3,
+            "explicit",
+        ),
     ],
 )
 def test_absurd_input_is_one_line_with_the_right_exit_code(tmp_path, args, code, field):
@@ -268,11 +383,23 @@ def test_plot_path_checked_before_the_fit(tmp_path):
 
 def test_doubtful_sphere_contact_warns_but_runs(tmp_path):
     """a/R = 0.45: Hertz's paraboloid is doubtful, not impossible: exit 0 with one warning line."""
-    proc = cli("contact", "axisymmetric", "--radius", "0.01", "--modulus", "1e11", "--indentation", "2e-3", "--json")
+    proc = cli(
+        "contact",
+        "axisymmetric",
+        "--radius",
+        "0.01",
+        "--modulus",
+        "1e11",
+        "--indentation",
+        "2e-3",
+        "--json",
+    )
     assert proc.returncode == 0
     assert proc.stderr.count("warning:") == 1
     assert json.loads(proc.stdout)["warnings"]
-    quiet = cli("contact", "axisymmetric", "--radius", "0.01", "--modulus", "1e11", "--indentation", "2e-6")
+    quiet = cli(
+        "contact", "axisymmetric", "--radius", "0.01", "--modulus", "1e11", "--indentation", "2e-6"
+    )
     assert quiet.returncode == 0 and quiet.stderr == ""  # a/R = 0.014: no warning
 
 
@@ -282,10 +409,13 @@ def test_doubtful_sphere_contact_warns_but_runs(tmp_path):
     [
         # failed after ~35 s of LAMMPS before issue 12
         ("[load]\npressures = []\n", "[load].pressures"),
-        # a 2^20-point side: the contact stage ran out of memory (MDR reads the whole map; auto's BEM
-        # would resample a generated surface to its measured mesh)
-        ('[geometry]\nprofile = "rough"\n[roughness]\ngrid_points = 1048576\n[contact]\nmethod = "mdr"\n',
-         "[roughness].grid_points"),
+        # a 2^20-point side: the contact stage ran out of memory (MDR reads the whole
+        # map; auto's BEM would resample a generated surface to its measured mesh)
+        (
+            '[geometry]\nprofile = "rough"\n[roughness]\ngrid_points '
+            '= 1048576\n[contact]\nmethod = "mdr"\n',
+            "[roughness].grid_points",
+        ),
         ("[topography]\ndim = 2\ngrid_points = 65536\n", "[topography].grid_points"),
     ],
 )
@@ -302,7 +432,9 @@ def test_check_reads_the_surface_file_a_scene_names(tmp_path):
     bad = tmp_path / "bad.npy"
     bad.write_bytes(b"\x93NUMPY this is not an array")
     scene = tmp_path / "s.toml"
-    scene.write_text('[geometry]\nprofile = "rough"\n[roughness]\nsurface_file = "bad.npy"\npixel_size = 1e-6\n')
+    scene.write_text(
+        '[geometry]\nprofile = "rough"\n[roughness]\nsurface_file = "bad.npy"\npixel_size = 1e-6\n'
+    )
     proc = cli("check", scene)
     assert_one_line(proc, 2)
     assert "[roughness].surface_file" in proc.stderr
@@ -338,7 +470,17 @@ def test_eq23_evolve_reports_progress_to_the_end():
     from tribolmp.models.topography import TopographyParams, evolve
 
     seen = []
-    p = TopographyParams(dim=1, grid_points=64, pixel_size=1e-9, d0=1e-12, dx_noise=1e-30, dz=1e-30, mu=1.0, dt=1e-3, steps=1000)
+    p = TopographyParams(
+        dim=1,
+        grid_points=64,
+        pixel_size=1e-9,
+        d0=1e-12,
+        dx_noise=1e-30,
+        dz=1e-30,
+        mu=1.0,
+        dt=1e-3,
+        steps=1000,
+    )
     evolve(p, rng=np.random.default_rng(0), progress=lambda f, what="": seen.append(f))
     assert 100 <= len(seen) <= 1001 and seen[-1] == 1.0 and seen == sorted(seen)
 
@@ -355,16 +497,41 @@ def _surface(tmp_path, name, h, meta):
 
 @pytest.mark.parametrize("method", ["bem", "mdr"])
 def test_overflowing_heights_are_refused(tmp_path, method):
-    """Heights x 1e300: ZeroDivisionError (BEM) or a stiffness of 0 with exit 0 (MDR) before issue 12."""
+    """Heights x 1e300 (overflow).
+
+    Before issue 12: ZeroDivisionError (BEM) or a stiffness of 0 with exit 0 (MDR).
+    """
     import numpy as np
 
     h = np.random.default_rng(0).standard_normal((32, 32)) * 1e-6
     f = _surface(tmp_path, "big", h * 1e300, {"pixel_size_m": 1e-6})
-    proc = cli("contact", "rough", "--surface", f, "--modulus", "1e11", "--pressures", "1e6", "--method", method)
+    proc = cli(
+        "contact",
+        "rough",
+        "--surface",
+        f,
+        "--modulus",
+        "1e11",
+        "--pressures",
+        "1e6",
+        "--method",
+        method,
+    )
     assert_one_line(proc, 2)
     assert "surface" in proc.stderr
     ok = _surface(tmp_path, "ok", h, {"pixel_size_m": 1e-6})
-    good = cli("contact", "rough", "--surface", ok, "--modulus", "1e11", "--pressures", "1e6", "--method", method)
+    good = cli(
+        "contact",
+        "rough",
+        "--surface",
+        ok,
+        "--modulus",
+        "1e11",
+        "--pressures",
+        "1e6",
+        "--method",
+        method,
+    )
     assert good.returncode == 0, good.stderr  # the same surface at its real scale is fine
 
 
@@ -383,7 +550,9 @@ def test_scene_surface_without_sidecar_says_where_its_pixel_size_comes_from(tmp_
 
     _surface(tmp_path, "s", np.random.default_rng(1).standard_normal((32, 32)) * 1e-7, None)
     scene = tmp_path / "scene.toml"
-    scene.write_text('[geometry]\nprofile = "rough"\n[roughness]\nsurface_file = "s.npy"\npixel_size = 1e-6\n')
+    scene.write_text(
+        '[geometry]\nprofile = "rough"\n[roughness]\nsurface_file = "s.npy"\npixel_size = 1e-6\n'
+    )
     proc = cli("check", scene)
     assert proc.returncode == 0, proc.stderr
     assert "no sidecar" in proc.stdout and "[roughness].pixel_size = 1e-06 m" in proc.stdout
@@ -401,7 +570,17 @@ def test_full_disk_is_one_line_and_the_folder_recovers(tmp_path):
         resource.setrlimit(resource.RLIMIT_FSIZE, (4000, 4000))
 
     out = tmp_path / "o"
-    cmd = [sys.executable, "-m", "tribolmp", "run", TINY, "--out", str(out), "--quiet", "--no-figures"]
+    cmd = [
+        sys.executable,
+        "-m",
+        "tribolmp",
+        "run",
+        TINY,
+        "--out",
+        str(out),
+        "--quiet",
+        "--no-figures",
+    ]
     proc = subprocess.run(cmd, preexec_fn=small_files, capture_output=True, text=True, timeout=300)
     assert_one_line(proc, 3)
     assert str(out) in proc.stderr  # names the file it could not write
@@ -413,7 +592,9 @@ def test_full_disk_is_one_line_and_the_folder_recovers(tmp_path):
 
 
 def _can_mount_tmpfs(path) -> bool:
-    probe = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1m", "tmpfs", str(path)], capture_output=True)
+    probe = subprocess.run(
+        ["mount", "-t", "tmpfs", "-o", "size=1m", "tmpfs", str(path)], capture_output=True
+    )
     if probe.returncode == 0:
         subprocess.run(["umount", str(path)], check=True)
         return True
@@ -437,7 +618,10 @@ def test_read_only_cache_dir_is_one_line(tmp_path):
 
 # --- the nanoscale stage says what it will cost before LAMMPS starts
 def test_nanoscale_cost_estimate_matches_the_built_system(tmp_path, monkeypatch):
-    """Steps exactly, automata within 25 % of the system prepare() builds; a measured rate is used next time."""
+    """Steps exactly, automata within 25 % of the system prepare() builds.
+
+    A measured rate is used next time.
+    """
     from tribolmp.chain.stages import nanoscale as stage
     from tribolmp.lammps import mca
     from tribolmp.lammps.mca.prepare import prepare
@@ -452,12 +636,15 @@ def test_nanoscale_cost_estimate_matches_the_built_system(tmp_path, monkeypatch)
     assert abs(est["steps"] - meta["steps"]) <= 1
     # the count is the bodies' area over the close-packed cell: it misses the rough edges (~15 %)
     assert abs(est["atoms"] / meta["n_atoms"] - 1) < 0.25
-    # a run measured 2e6 automaton-steps/s over 40 s: the next estimate of the same scene is that run
+    # a run measured 2e6 automaton-steps/s over 40 s: the next estimate of
+    # the same scene is that run
     meta.update(atom_steps_per_s=2e6, wall_time_s=meta["n_atoms"] * meta["steps"] / 2e6)
     (tmp_path / "run" / "meta.json").write_text(json.dumps(meta))
     stage._remember_throughput(scene, tmp_path / "run" / "meta.json")
     again = stage.estimate_wall_time(scene)
     assert "measured" in again["rate_source"]
-    assert again["seconds"] == pytest.approx(meta["wall_time_s"], rel=0.02)  # 2 %: steps rounded vs exact
+    assert again["seconds"] == pytest.approx(
+        meta["wall_time_s"], rel=0.02
+    )  # 2 %: steps rounded vs exact
     notes = stage.STAGE.preflight(scene, None)
     assert len(notes) == 1 and "estimated wall time" in notes[0]

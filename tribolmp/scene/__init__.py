@@ -43,7 +43,16 @@ from .schema import (
     Tribospectroscopy,
 )
 
-__all__ = ["Scene", "load_scene", "parse_scene", "default_scene", "builtin_scene", "example_scenes", "scene_path", "BUILTIN_SCENES"]
+__all__ = [
+    "Scene",
+    "load_scene",
+    "parse_scene",
+    "default_scene",
+    "builtin_scene",
+    "example_scenes",
+    "scene_path",
+    "BUILTIN_SCENES",
+]
 
 #: Sections every scene has (filled with defaults when absent).
 ALWAYS = ("scene", "material", "geometry", "load", "kinematics", "contact", "outputs")
@@ -85,13 +94,19 @@ class Scene:
     def effective_modulus(self) -> float:
         """E* in Pa: 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2."""
         a, b = self.material, self.counter
-        return 1.0 / ((1 - a.poisson_ratio**2) / a.youngs_modulus + (1 - b.poisson_ratio**2) / b.youngs_modulus)
+        return 1.0 / (
+            (1 - a.poisson_ratio**2) / a.youngs_modulus
+            + (1 - b.poisson_ratio**2) / b.youngs_modulus
+        )
 
     @property
     def effective_shear_modulus(self) -> float:
         """MDR tangential modulus G* in Pa: 1/G* = (2-nu1)/(4G1) + (2-nu2)/(4G2)."""
         a, b = self.material, self.counter
-        return 1.0 / ((2 - a.poisson_ratio) / (4 * a.shear_modulus) + (2 - b.poisson_ratio) / (4 * b.shear_modulus))
+        return 1.0 / (
+            (2 - a.poisson_ratio) / (4 * a.shear_modulus)
+            + (2 - b.poisson_ratio) / (4 * b.shear_modulus)
+        )
 
     def to_dict(self) -> dict[str, Any]:
         """Plain dict of all present sections (for hashing and reports)."""
@@ -99,9 +114,12 @@ class Scene:
         for name in SECTIONS:
             sec = getattr(self, name)
             if sec is not None:
-                # None means "not given" (optional [rates] fields): left out, so the dict stays TOML.
+                # None means "not given" (optional [rates] fields): left
+                # out, so the dict stays TOML.
                 out[name] = {
-                    k: (list(v) if isinstance(v, tuple) else v) for k, v in dataclasses.asdict(sec).items() if v is not None
+                    k: (list(v) if isinstance(v, tuple) else v)
+                    for k, v in dataclasses.asdict(sec).items()
+                    if v is not None
                 }
         return out
 
@@ -128,11 +146,18 @@ def parse_scene(data: dict[str, Any] | str, source: str = "<scene>") -> Scene:
             raise SceneError("scene", "valid TOML text", str(exc), source) from None
     if not isinstance(data, dict):
         # Name both accepted kinds: a bare "a TOML table" hid that text works too.
-        raise SceneError("scene", "a mapping (parsed TOML) or TOML text (str)", type(data).__name__, source)
+        raise SceneError(
+            "scene", "a mapping (parsed TOML) or TOML text (str)", type(data).__name__, source
+        )
     kwargs: dict[str, Any] = {}
     for key, value in data.items():
         if key not in SECTIONS:
-            raise SceneError(f"[{key}]", f"one of the known sections {sorted(SECTIONS)}", "unknown section", source)
+            raise SceneError(
+                f"[{key}]",
+                f"one of the known sections {sorted(SECTIONS)}",
+                "unknown section",
+                source,
+            )
         try:
             kwargs[key] = build_dataclass(SECTIONS[key], value, prefix=f"[{key}].", source=source)
         except SceneError:
@@ -151,27 +176,48 @@ def _check_consistency(scene: Scene) -> None:
     src = scene.source
     g = scene.geometry
     if g.profile == "rough" and scene.roughness is None and "stiffness" in scene.outputs.requested:
-        raise SceneError("[roughness]", "a [roughness] section for geometry.profile = 'rough'", "nothing", src)
+        raise SceneError(
+            "[roughness]", "a [roughness] section for geometry.profile = 'rough'", "nothing", src
+        )
     if "lubrication" in scene.outputs.requested and scene.lubricant is None:
-        raise SceneError("[lubricant]", "a [lubricant] section when outputs request 'lubrication'", "nothing", src)
-    if "polishing" in scene.outputs.requested and (scene.lubricant is None or scene.polishing is None):
+        raise SceneError(
+            "[lubricant]",
+            "a [lubricant] section when outputs request 'lubrication'",
+            "nothing",
+            src,
+        )
+    if "polishing" in scene.outputs.requested and (
+        scene.lubricant is None or scene.polishing is None
+    ):
         missing = "[lubricant]" if scene.lubricant is None else "[polishing]"
-        raise SceneError(missing, f"a {missing} section when outputs request 'polishing'", "nothing", src)
+        raise SceneError(
+            missing, f"a {missing} section when outputs request 'polishing'", "nothing", src
+        )
     if scene.nanoscale is not None and scene.rates is not None:
-        raise SceneError("[rates]", "either [nanoscale] (measure rates) or [rates] (give them), not both", "both", src)
+        raise SceneError(
+            "[rates]",
+            "either [nanoscale] (measure rates) or [rates] (give them), not both",
+            "both",
+            src,
+        )
     if scene.nanoscale is not None:
         nano, mat = scene.nanoscale, scene.material
         # A pressure above the yield strength crushes the automaton lattice before sliding starts.
         if nano.pressure >= mat.yield_strength:
             raise SceneError(
-                "[nanoscale].pressure", f"a value < [material].yield_strength ({mat.yield_strength:g} Pa)", nano.pressure, src
+                "[nanoscale].pressure",
+                f"a value < [material].yield_strength ({mat.yield_strength:g} Pa)",
+                nano.pressure,
+                src,
             )
     if scene.roughness is not None and scene.roughness.surface_file:
         path = Path(scene.roughness.surface_file)
         if not path.is_absolute() and scene.source not in ("<default>", "<scene>"):
             path = Path(scene.source).parent / path
         if not path.exists():
-            raise SceneError("[roughness].surface_file", "an existing .npy height map", str(path), src)
+            raise SceneError(
+                "[roughness].surface_file", "an existing .npy height map", str(path), src
+            )
     if not scene.load.pressures:
         # The contact stage's stiffness-vs-load table needs at least one load (found after the
         # LAMMPS stage otherwise).
@@ -246,6 +292,8 @@ def builtin_scene(name: str) -> Scene:
     try:
         data = BUILTIN_SCENES[name]
     except KeyError:
-        raise SceneError("scene", f"one of the built-in scenes {sorted(BUILTIN_SCENES)}", name) from None
+        raise SceneError(
+            "scene", f"one of the built-in scenes {sorted(BUILTIN_SCENES)}", name
+        ) from None
     return parse_scene({k: dict(v) for k, v in data.items()}, source="<built-in>")
 
