@@ -19,7 +19,15 @@ E, R = 1.0, 1.0
 @pytest.mark.parametrize("x,y", [(0.3, 0.1), (2.3, -1.7), (-0.5, 0.5), (0.0, -7.0)])
 def test_love_influence_against_quadrature(x, y):
     a = 0.5
-    num = integrate.dblquad(lambda yy, xx: 1 / (math.pi * E * np.hypot(x - xx, y - yy)), -a, a, -a, a, epsabs=1e-12, epsrel=1e-10)[0]
+    num = integrate.dblquad(
+        lambda yy, xx: 1 / (math.pi * E * np.hypot(x - xx, y - yy)),
+        -a,
+        a,
+        -a,
+        a,
+        epsabs=1e-12,
+        epsrel=1e-10,
+    )[0]
     assert love_influence(x, y, a, a, E) == pytest.approx(num, rel=1e-8)
 
 
@@ -36,9 +44,9 @@ def test_nonperiodic_hertz_second_order():
         gap = res.u - sphere_heights(n, dx, R) + (sphere_heights(n, dx, R).max() - res.approach)
         assert res.p.min() >= 0 and gap.min() >= -1e-9 * d
         assert np.max(np.abs(gap[res.p > 0])) <= 1e-8 * d
-    # Piecewise-constant pressure with exact influence coefficients: O(dx^2) ->
-    # halving dx must reduce the error by about 4 (measured at 64 -> 128 -> 256: 1.6e-4 -> 7.6e-5 -> 1.7e-5, ratios 2.1, 4.4
-    # because the contact edge is resolved by few pixels; >= 1.8 still excludes O(dx)).
+    # Piecewise-constant pressure with exact influence coefficients: O(dx^2) -> halving dx must
+    # reduce the error by about 4 (measured at 64 -> 128 -> 256: 1.6e-4 -> 7.6e-5 -> 1.7e-5, ratios
+    # 2.1, 4.4 because the contact edge is resolved by few pixels; >= 1.8 still excludes O(dx)).
     assert errs[1] < errs[0] / 1.8
     assert errs[1] < 3e-4  # measured 1.6e-4 at 64^2 (12.8 pixels per contact radius)
     # Contact stiffness of Hertz: 2 a E*; pixelated edge -> 1 %.
@@ -72,7 +80,9 @@ def test_bem_against_mdr_axisymmetric():
 
 
 def test_flat_punch_bem_edge_singularity():
-    p = AxisymmetricParams(profile="flat", radius=1e-3, E_star=1e11, indentation=1e-6, grid_points=64)
+    p = AxisymmetricParams(
+        profile="flat", radius=1e-3, E_star=1e11, indentation=1e-6, grid_points=64
+    )
     bem = solve(p, method="bem")
     # The 1/sqrt edge singularity is poorly resolved by pixels: first-order error, 1 % at 64^2.
     assert bem.force == pytest.approx(float(ref.flat_punch_force(1e-6, 1e-3, 1e11)), rel=1e-2)

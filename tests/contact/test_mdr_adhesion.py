@@ -35,7 +35,13 @@ def test_force_indentation_curve_with_unstable_branch(jkr):
     assert np.any(np.diff(curve.d) < 0) and np.any(np.diff(curve.d) > 0)
 
 
-@pytest.mark.parametrize("control,reference", [("force", ref.jkr_pull_off_force_control), ("displacement", ref.jkr_pull_off_displacement_control)])
+@pytest.mark.parametrize(
+    "control,reference",
+    [
+        ("force", ref.jkr_pull_off_force_control),
+        ("displacement", ref.jkr_pull_off_displacement_control),
+    ],
+)
 def test_pull_off_within_1e4(jkr, control, reference):
     m, _ = jkr
     po = m.pull_off(control)
@@ -77,15 +83,23 @@ def test_jkr_next_to_pull_off(jkr):
 
 
 def test_flat_punch_adhesion_kendall():
-    res = solve(AxisymmetricParams(profile="flat", radius=R, E_star=E, indentation=1e-7, work_of_adhesion=W))
+    res = solve(
+        AxisymmetricParams(profile="flat", radius=R, E_star=E, indentation=1e-7, work_of_adhesion=W)
+    )
     # Kendall (1971): F = -sqrt(8 pi R^3 w E*)
     assert res.pull_off_force == pytest.approx(-math.sqrt(8 * math.pi * R**3 * W * E), rel=1e-12)
     assert res.force == pytest.approx(2 * E * R * 1e-7, rel=1e-12)
 
 
 def test_solver_pull_off_through_params():
-    res = solve(AxisymmetricParams(profile="sphere", radius=R, E_star=E, indentation=0.0, work_of_adhesion=W, springs=201))
+    res = solve(
+        AxisymmetricParams(
+            profile="sphere", radius=R, E_star=E, indentation=0.0, work_of_adhesion=W, springs=201
+        )
+    )
     assert res.pull_off_force == pytest.approx(ref.jkr_pull_off_force_control(R, W), rel=1e-4)
-    assert res.pull_off_force_displacement_control == pytest.approx(ref.jkr_pull_off_displacement_control(R, W), rel=1e-4)
+    assert res.pull_off_force_displacement_control == pytest.approx(
+        ref.jkr_pull_off_displacement_control(R, W), rel=1e-4
+    )
     # d = 0 with adhesion: a = (2 pi w R^2 / E*)^(1/3)
     assert res.contact_radius == pytest.approx((2 * math.pi * W * R * R / E) ** (1 / 3), rel=1e-9)

@@ -30,19 +30,27 @@ def test_profile_transform_closed_forms():
     # Gauss-Legendre on a smooth (polynomial/constant) integrand: exact to round-off.
     assert np.allclose(profile_transform(lambda r: r / R, x), x**2 / R, rtol=1e-13, atol=1e-22)
     t = math.tan(math.radians(70))
-    assert np.allclose(profile_transform(lambda r: np.full_like(r, 1 / t), x), 0.5 * math.pi * np.abs(x) / t, rtol=1e-13)
+    assert np.allclose(
+        profile_transform(lambda r: np.full_like(r, 1 / t), x),
+        0.5 * math.pi * np.abs(x) / t,
+        rtol=1e-13,
+    )
     n, c = 3.0, 2.0
     g = profile_transform(lambda r: n * c * r ** (n - 1), x)
     assert np.allclose(g, kappa(n) * c * np.abs(x) ** n, rtol=1e-12, atol=1e-30)
     # kappa_2 = 2 (sphere), kappa_1 = pi/2 (cone)
-    assert kappa(2.0) == pytest.approx(2.0, rel=1e-14) and kappa(1.0) == pytest.approx(math.pi / 2, rel=1e-14)
+    assert kappa(2.0) == pytest.approx(2.0, rel=1e-14) and kappa(1.0) == pytest.approx(
+        math.pi / 2, rel=1e-14
+    )
 
 
 def test_profile_transform_tabulated_sphere():
     r = np.linspace(0, 1e-4, 200)
     x = np.linspace(-9e-5, 9e-5, 31)
     # A cubic spline reproduces a quadratic exactly, so only round-off remains.
-    assert np.allclose(profile_transform_tabulated(r, r**2 / (2 * R), x), x**2 / R, rtol=1e-10, atol=1e-20)
+    assert np.allclose(
+        profile_transform_tabulated(r, r**2 / (2 * R), x), x**2 / R, rtol=1e-10, atol=1e-20
+    )
     with pytest.raises(ParameterError, match="f: expected finite"):
         profile_transform_tabulated(r, np.full_like(r, np.nan), x)
 
@@ -85,7 +93,9 @@ def test_power_law_and_large_indentation():
     a = (d / (kappa(n) * c)) ** (1 / n)
     x, g = axisymmetric_profile("power", 1999, 1.5 * a, exponent=n, coefficient=c)
     # O(dx^2) with curvature larger than the sphere's near the edge: 1e-5 is ~20x the measured error
-    assert normal_force(x, g, d, E) == pytest.approx(float(ref.power_law_force(d, n, c, E)), rel=1e-5)
+    assert normal_force(x, g, d, E) == pytest.approx(
+        float(ref.power_law_force(d, n, c, E)), rel=1e-5
+    )
     # Very large indentation (d = 10 R, contact radius 3 R): the paraboloid law is scale-free,
     # so the relative accuracy of the row must not change.
     d = 10 * R
@@ -114,7 +124,9 @@ def test_contact_spanning_fewer_than_three_springs():
     # The high-level solver refines the row to the contact and stays at 1e-6.
     from tribolmp.models.contact import AxisymmetricParams, solve
 
-    res = solve(AxisymmetricParams(profile="sphere", radius=R, E_star=E, indentation=1e-15, springs=1999))
+    res = solve(
+        AxisymmetricParams(profile="sphere", radius=R, E_star=E, indentation=1e-15, springs=1999)
+    )
     assert abs(res.force / float(ref.hertz_force(1e-15, R, E)) - 1) <= 1e-6
 
 
@@ -129,7 +141,8 @@ def test_pressure_and_displacement_hertz():
     # target relative to p0 is met with orders of magnitude to spare.
     assert np.max(np.abs(m.pressure(r, d) - ref.hertz_pressure(r, d, R, E))) <= 1e-4 * p0
     r = np.linspace(0, 3 * a, 61)
-    # Outside the contact, the (2/pi) int w1D / sqrt(r^2 - x^2) form must give Hertz's exterior solution.
+    # Outside the contact, the (2/pi) int w1D / sqrt(r^2 - x^2) form must
+    # give Hertz's exterior solution.
     assert np.max(np.abs(m.displacement(r, d) - ref.hertz_displacement(r, d, R))) <= 1e-6 * d
 
 
@@ -152,14 +165,17 @@ def test_flat_punch_edge_singularity():
     x, g = axisymmetric_profile("flat", n, m_half * dx, radius=R0)
     d = 1e-6
     # The exact integral of the row with a wall at the cell middle is exact for the punch.
-    assert normal_force(x, g, d, E) == pytest.approx(float(ref.flat_punch_force(d, R0, E)), rel=1e-12)
+    assert normal_force(x, g, d, E) == pytest.approx(
+        float(ref.flat_punch_force(d, R0, E)), rel=1e-12
+    )
     m = AxisymmetricMDR(x, g, E)
     assert m.x_edge == pytest.approx(R0, rel=1e-12)
     # The jump of q = E* d at the edge gives p ~ 1/sqrt(R^2 - r^2); check right up to the edge,
     # where p grows by 3 orders of magnitude.
     r = R0 * (1 - np.geomspace(1e-6, 1, 30))
     p_ref = ref.flat_punch_pressure(r, d, R0, E)
-    # 1e-8: the edge position carries ~1e-16 round-off, amplified 1e6x by a^2 - r^2 at 1 - r/a = 1e-6.
+    # 1e-8: the edge position carries ~1e-16 round-off, amplified 1e6x by
+    # a^2 - r^2 at 1 - r/a = 1e-6.
     assert np.max(np.abs(m.pressure(r, d) / p_ref - 1)) <= 1e-8
     assert p_ref[0] / p_ref[-1] > 500
 

@@ -109,4 +109,6 @@ def test_any_history_respects_coulomb(history):
         Fn, Fx = m.step(fd * D, fu * US)
         assert Fn == pytest.approx(normal_force(x, g, fd * D, E), rel=1e-12, abs=1e-300)
         assert abs(Fx) <= MU * Fn * (1 + 1e-12) + 1e-300
-        assert 0.0 <= m.stiffness_x <= G * 2 * math.sqrt(R * max(fd * D, 0.0)) * (1 + 1e-12) + 1e-300
+        assert (
+            0.0 <= m.stiffness_x <= G * 2 * math.sqrt(R * max(fd * D, 0.0)) * (1 + 1e-12) + 1e-300
+        )

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from tribolmp.errors import ParameterError
-from tribolmp.models.contact import solve_rough, stiffness_vs_pressure
 from tribolmp.models.contact import reference as ref
+from tribolmp.models.contact import solve_rough, stiffness_vs_pressure
 from tribolmp.models.contact.mdr import normal_force, normal_stiffness
 from tribolmp.models.contact.rough import (
     generate_surface,
@@ -33,13 +33,21 @@ def test_psd_normalisation_and_measurement(rng):
     qm, C = measure_psd_2d(h, DX)
     # Parseval: sum of the measured PSD times dq^2 is the variance, to round-off.
     dq = 2 * math.pi / (128 * DX)
-    counts = np.bincount(np.rint(np.hypot(*np.meshgrid(np.fft.fftfreq(128) * 128, np.fft.fftfreq(128) * 128)).ravel()).astype(int))
-    assert np.sum(C * counts[1 : C.size + 1][: C.size] * dq * dq) == pytest.approx(h.var(), rel=1e-9)
+    counts = np.bincount(
+        np.rint(
+            np.hypot(*np.meshgrid(np.fft.fftfreq(128) * 128, np.fft.fftfreq(128) * 128)).ravel()
+        ).astype(int)
+    )
+    assert np.sum(C * counts[1 : C.size + 1][: C.size] * dq * dq) == pytest.approx(
+        h.var(), rel=1e-9
+    )
 
 
 def test_geike_popov_profiles_keep_height_and_slope(rng):
     h = generate_surface(256, DX, PSD, rng)
-    grad = np.sqrt(np.mean(((np.roll(h, -1, 0) - h) / DX) ** 2 + ((np.roll(h, -1, 1) - h) / DX) ** 2))
+    grad = np.sqrt(
+        np.mean(((np.roll(h, -1, 0) - h) / DX) ** 2 + ((np.roll(h, -1, 1) - h) / DX) ** 2)
+    )
     x, g = mdr_profiles_from_heightmap(h, DX, 200, rng)
     assert x.shape == (256,) and g.shape == (200, 256)
     assert np.allclose(g.min(axis=1), 0.0) and np.allclose(np.diff(x), DX)
@@ -72,7 +80,9 @@ def test_mdr_profiles_keep_the_nyquist_mode():
     assert np.mean(g.var(axis=1)) == pytest.approx(expected, rel=0.01)
     # A spectrum with power only at the Nyquist wave number: the profile must not be flat.
     qn = math.pi / dx
-    _, g = _profiles_from_c1d(lambda q: np.where(np.isclose(q, qn), c, 0.0), n, dx, 40000, np.random.default_rng(8))
+    _, g = _profiles_from_c1d(
+        lambda q: np.where(np.isclose(q, qn), c, 0.0), n, dx, 40000, np.random.default_rng(8)
+    )
     # one real Gaussian mode: relative standard error of the variance sqrt(2/40000) = 0.7 % -> 4 %
     assert np.mean(g.var(axis=1)) == pytest.approx(c * dq, rel=0.04)
 
@@ -94,12 +104,18 @@ def test_stiffness_vs_load_is_consistent_with_the_spring_row(rng):
             d = res.approach_all[i, j]
             # each realisation carries F = p A (Newton to 1e-12)
             assert normal_force(x, g[i], d, 1e11) == pytest.approx(p * A, rel=1e-9)
-            assert res.stiffness_all[i, j] == pytest.approx(normal_stiffness(x, g[i], d, 1e11), rel=1e-12)
+            assert res.stiffness_all[i, j] == pytest.approx(
+                normal_stiffness(x, g[i], d, 1e11), rel=1e-12
+            )
             # stiffness is the derivative of the force (central difference, piecewise quadratic F)
             h = 1e-6 * d
             dF = (normal_force(x, g[i], d + h, 1e11) - normal_force(x, g[i], d - h, 1e11)) / (2 * h)
             assert res.stiffness_all[i, j] == pytest.approx(dF, rel=1e-5)
-    assert np.all(np.diff(res.stiffness) > 0) and np.all(res.stiffness_q10 <= res.stiffness) and np.all(res.stiffness <= res.stiffness_q90)
+    assert (
+        np.all(np.diff(res.stiffness) > 0)
+        and np.all(res.stiffness_q10 <= res.stiffness)
+        and np.all(res.stiffness <= res.stiffness_q90)
+    )
     assert "area" not in " ".join(k for k in res if k != "nominal_area")  # never a contact area
 
 
@@ -113,9 +129,15 @@ def test_closed_fraction_counts_lines_at_the_punch_limit(rng):
     res = stiffness_vs_load(x, g, E, P)
     at_limit = np.mean(np.isclose(res.stiffness_all, E * L, rtol=1e-12, atol=0), axis=0)
     assert np.array_equal(res.closed_fraction, at_limit)
-    assert res.closed_fraction[0] == 0.0 and res.closed_fraction[-1] == 1.0 and 0 < res.closed_fraction[2] < 1
+    assert (
+        res.closed_fraction[0] == 0.0
+        and res.closed_fraction[-1] == 1.0
+        and 0 < res.closed_fraction[2] < 1
+    )
     flagged = [p for p, c in zip(P, res.closed_fraction) if c > 0.1]
-    assert len(res.warnings) == len(flagged) and all(f"{p:g} Pa" in w for p, w in zip(flagged, res.warnings))
+    assert len(res.warnings) == len(flagged) and all(
+        f"{p:g} Pa" in w for p, w in zip(flagged, res.warnings)
+    )
 
 
 def test_single_asperity_touching():
@@ -166,7 +188,9 @@ def test_rough_input_validation(rng):
 
 
 def test_scene_adapter_runs_mdr_and_bem():
-    params = RoughParams(E_star=1e11, pixel_size=2e-6, grid_points=64, pressures=(1e6, 1e7), realizations=8, seed=3)
+    params = RoughParams(
+        E_star=1e11, pixel_size=2e-6, grid_points=64, pressures=(1e6, 1e7), realizations=8, seed=3
+    )
     mdr = stiffness_vs_pressure(params, method="mdr")
     bem = stiffness_vs_pressure(params, method="bem")
     assert [r["pressure"] for r in mdr.rows] == [1e6, 1e7] and "stiffness_q10" in mdr.rows[0]
@@ -180,7 +204,10 @@ def test_scene_adapter_runs_mdr_and_bem():
     # punch limit E* L, and both stiffnesses grow with the load.
     L = 64 * 2e-6
     assert all(0 < r["stiffness"] <= 1e11 * L * (1 + 1e-12) for r in mdr.rows)
-    assert mdr.rows[1]["stiffness"] > mdr.rows[0]["stiffness"] and bem.rows[1]["stiffness"] > bem.rows[0]["stiffness"]
+    assert (
+        mdr.rows[1]["stiffness"] > mdr.rows[0]["stiffness"]
+        and bem.rows[1]["stiffness"] > bem.rows[0]["stiffness"]
+    )
 
 
 def test_rms_gradient_and_pressure_scale_out(rng):
@@ -188,13 +215,19 @@ def test_rms_gradient_and_pressure_scale_out(rng):
     # scaling the heights and the pressure by s scales u, the gap and the force by s and leaves the
     # contact set and dF/dd unchanged.  This is why the references are tabulated by p/(E* h'rms).
     from tribolmp.models.contact.bem import solve_bem
-    from tribolmp.models.contact.rough import fourier_coefficients, rms_gradient, surface_from_coefficients
+    from tribolmp.models.contact.rough import (
+        fourier_coefficients,
+        rms_gradient,
+        surface_from_coefficients,
+    )
 
     B = fourier_coefficients(self_affine_psd(1e-6, 0.8, 2.5e-5, 1e-4 / 12), 1e-4, 12, rng)
     h = surface_from_coefficients(B, 64)
     dx = 1e-4 / 64
     # band-limited: the rms gradient is the same on any grid above the Nyquist rate (round-off)
-    assert rms_gradient(surface_from_coefficients(B, 128), dx / 2) == pytest.approx(rms_gradient(h, dx), rel=1e-10)
+    assert rms_gradient(surface_from_coefficients(B, 128), dx / 2) == pytest.approx(
+        rms_gradient(h, dx), rel=1e-10
+    )
     a = solve_bem(h, dx, 1e11, 1e8, periodic=True, tol=1e-12)
     b = solve_bem(3 * h, dx, 1e11, 3e8, periodic=True, tol=1e-12)
     assert np.array_equal(a.p > 0, b.p > 0)
@@ -236,12 +269,26 @@ def test_params_from_scene():
     scene = default_scene()
     p = params_from_scene(scene)
     assert isinstance(p, RoughParams)
-    assert p.E_star == pytest.approx(scene.effective_modulus) and p.pressures == tuple(scene.load.pressures)
-    sphere = dataclasses.replace(scene, geometry=dataclasses.replace(scene.geometry, profile="sphere"))
+    assert p.E_star == pytest.approx(scene.effective_modulus) and p.pressures == tuple(
+        scene.load.pressures
+    )
+    sphere = dataclasses.replace(
+        scene, geometry=dataclasses.replace(scene.geometry, profile="sphere")
+    )
     ap = params_from_scene(sphere)
     res = solve(ap)
     assert res.force == pytest.approx(scene.load.normal_force, rel=1e-6)
-    assert res.contact_radius == pytest.approx(math.sqrt(scene.geometry.radius * float(ref.hertz_indentation(scene.load.normal_force, scene.geometry.radius, scene.effective_modulus))), rel=1e-6)
+    assert res.contact_radius == pytest.approx(
+        math.sqrt(
+            scene.geometry.radius
+            * float(
+                ref.hertz_indentation(
+                    scene.load.normal_force, scene.geometry.radius, scene.effective_modulus
+                )
+            )
+        ),
+        rel=1e-6,
+    )
     zero = dataclasses.replace(sphere, load=dataclasses.replace(scene.load, normal_force=0.0))
     with pytest.raises(ParameterError, match="normal_force"):
         params_from_scene(zero)

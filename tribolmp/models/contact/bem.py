@@ -60,7 +60,9 @@ def love_influence(x, y, a, b, E_star):
             t2 = np.where(Y != 0, Y * np.arcsinh(X / np.where(Y != 0, np.abs(Y), 1.0)), 0.0)
         return t1 + t2
 
-    return (F(x + a, y + b) - F(x + a, y - b) - F(x - a, y + b) + F(x - a, y - b)) / (math.pi * E_star)
+    return (F(x + a, y + b) - F(x + a, y - b) - F(x - a, y + b) + F(x - a, y - b)) / (
+        math.pi * E_star
+    )
 
 
 class HalfSpace:
@@ -94,7 +96,9 @@ class HalfSpace:
         self.kernel = kernel
         # Displacement of a pixel under its own unit pressure (m/Pa): the scale of a
         # pressure correction that closes a local overlap.
-        self.self_compliance = float(love_influence(0.0, 0.0, self.dx / 2, self.dx / 2, self.E_star))
+        self.self_compliance = float(
+            love_influence(0.0, 0.0, self.dx / 2, self.dx / 2, self.E_star)
+        )
 
     def _build(self) -> np.ndarray:
         from scipy import fft
@@ -245,7 +249,10 @@ def solve_bem(
             converged = True
             break
     if not converged:
-        raise ConvergenceError(f"BEM did not converge in {maxiter} iterations (relative change {eps:.3g} > tol {tol:g})")
+        raise ConvergenceError(
+            f"BEM did not converge in {maxiter} iterations "
+            f"(relative change {eps:.3g} > tol {tol:g})"
+        )
 
     u = op(p)
     S = p > 0
@@ -271,7 +278,9 @@ def solve_bem(
             "contact_area": "m^2", "max_pressure": "Pa", "p": "Pa", "u": "m", "stiffness": "N/m",
         },
     )
-    res["stiffness"], res["nit_stiffness"] = (_stiffness(op, S, area_px, stiffness_tol) if stiffness else (float("nan"), 0))
+    res["stiffness"], res["nit_stiffness"] = (
+        _stiffness(op, S, area_px, stiffness_tol) if stiffness else (float("nan"), 0)
+    )
     res["time_s"] = time.perf_counter() - t0
     res["message"] = f"converged in {nit} iterations, contact fraction {frac:.4g}"
     return res

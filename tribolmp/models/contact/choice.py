@@ -1,4 +1,6 @@
-"""Which rough-contact solver to run: the measured speed-against-error table behind ``method = "auto"``.
+"""Which rough-contact solver to run.
+
+The measured speed-against-error table behind ``method = "auto"``.
 
 The table ``tribolmp/data/contact_speed_error.json`` is written by
 ``tests/data/generate_reference_data.py`` from the resolved rough-surface
@@ -23,7 +25,13 @@ from typing import Any
 
 from .rough import CLOSED_FRACTION_LIMIT
 
-__all__ = ["speed_error_table", "choose_method", "choose_method_for_scene", "reduced_pressures", "reduced_pressures_of_scene"]
+__all__ = [
+    "speed_error_table",
+    "choose_method",
+    "choose_method_for_scene",
+    "reduced_pressures",
+    "reduced_pressures_of_scene",
+]
 
 
 def speed_error_table() -> dict[str, Any] | None:
@@ -49,9 +57,8 @@ def reduced_pressures_of_scene(scene) -> list[float] | None:
     """
     if getattr(scene.geometry, "profile", None) != "rough" or scene.roughness is None:
         return None
-    from .rough import rms_gradient, rms_gradient_of_psd
-
     from ...errors import TribolmpError
+    from .rough import rms_gradient, rms_gradient_of_psd
 
     r = scene.roughness
     try:
@@ -61,11 +68,15 @@ def reduced_pressures_of_scene(scene) -> list[float] | None:
             h, dx = load_surface(r.surface_file)
             grad = rms_gradient(h, dx if dx is not None else r.pixel_size)
         else:
-            grad = rms_gradient_of_psd(r.rms_height, r.hurst, r.rolloff_wavelength, r.short_cutoff_wavelength)
+            grad = rms_gradient_of_psd(
+                r.rms_height, r.hurst, r.rolloff_wavelength, r.short_cutoff_wavelength
+            )
     except (TribolmpError, OSError, ValueError):
         return None  # an unreadable map is reported by the contact stage itself, not by planning
     if not grad > 0:
-        return None  # a flat surface has no roughness scale: the choice then uses every pressure range
+        return (
+            None  # a flat surface has no roughness scale: the choice then uses every pressure range
+        )
     return reduced_pressures(scene.load.pressures, scene.effective_modulus, grad)
 
 
@@ -79,9 +90,16 @@ def _distance(row: dict, lo: float, hi: float) -> float:
     return max(math.log(a / hi), math.log(lo / b), 0.0)
 
 
-def choose_method(tolerance: float, table: dict[str, Any] | None = None, *, reduced_pressures: list[float] | None = None,
-                  closed_fraction: float | None = None) -> dict[str, Any]:
-    """Cheapest measured (method, mesh) whose stiffness error over the asked pressures is within ``tolerance``.
+def choose_method(
+    tolerance: float,
+    table: dict[str, Any] | None = None,
+    *,
+    reduced_pressures: list[float] | None = None,
+    closed_fraction: float | None = None,
+) -> dict[str, Any]:
+    """Cheapest measured (method, mesh) that meets ``tolerance``.
+
+    Its stiffness error over the asked pressures is within ``tolerance``.
 
     Parameters
     ----------
@@ -109,13 +127,24 @@ def choose_method(tolerance: float, table: dict[str, Any] | None = None, *, redu
     """
     if table is None:
         table = speed_error_table()
-    rows = [r for r in (table or {}).get("rows", []) if r.get("rel_error") is not None and r.get("time_s") is not None]
+    rows = [
+        r
+        for r in (table or {}).get("rows", [])
+        if r.get("rel_error") is not None and r.get("time_s") is not None
+    ]
     asked = None
     if reduced_pressures:
         asked = (min(reduced_pressures), max(reduced_pressures))
     if not rows:
-        return {"method": "mdr", "mesh": None, "expected_error": None, "expected_time_s": None, "reduced_pressure_range": asked,
-                "why": "no measured speed-error table shipped; MDR with [contact].springs (error not quantified)"}
+        return {
+            "method": "mdr",
+            "mesh": None,
+            "expected_error": None,
+            "expected_time_s": None,
+            "reduced_pressure_range": asked,
+            "why": "no measured speed-error table shipped; MDR "
+                   "with [contact].springs (error not quantified)",
+        }
     groups: dict[tuple[str, Any], list[dict]] = {}
     for r in rows:
         groups.setdefault((r["method"], r["mesh"]), []).append(r)
@@ -134,30 +163,49 @@ def choose_method(tolerance: float, table: dict[str, Any] | None = None, *, redu
         if method == "mdr" and closed_fraction is not None:
             closed = max(closed, closed_fraction)
         if method == "mdr" and closed > CLOSED_FRACTION_LIMIT:
-            notes.append(f"MDR excluded: {closed:.0%} of its lines close in this pressure range (punch limit)")
+            notes.append(
+                f"MDR excluded: {closed:.0%} of its lines "
+                "close in this pressure range (punch limit)"
+            )
             continue
         cands.append({"method": method, "mesh": mesh, "rel_error": max(r["rel_error"] for r in use),
                       "time_s": max(r["time_s"] for r in use), "extrapolated": extrapolated})
     if not cands:
-        return {"method": "bem", "mesh": None, "expected_error": None, "expected_time_s": None, "reduced_pressure_range": asked,
-                "why": "; ".join(sorted(set(notes))) + "; no other measured solver: BEM at the scene's grid"}
+        return {
+            "method": "bem",
+            "mesh": None,
+            "expected_error": None,
+            "expected_time_s": None,
+            "reduced_pressure_range": asked,
+            "why": "; ".join(sorted(set(notes)))
+            + "; no other measured solver: BEM at the scene's grid",
+        }
     ok = [c for c in cands if c["rel_error"] <= tolerance]
     where = "" if asked is None else f" at p/(E* h'rms) {asked[0]:.3g}-{asked[1]:.3g}"
     if ok:
         best = min(ok, key=lambda c: (c["time_s"], c["rel_error"]))
-        why = (f"cheapest measured solver within tolerance {tolerance:g}{where}: {best['method']} mesh {best['mesh']} "
-               f"(measured error {best['rel_error']:.3g}, {best['time_s']:.3g} s)")
+        why = (
+            "cheapest measured solver within tolerance "
+            f"{tolerance:g}{where}: {best['method']} mesh {best['mesh']} "
+            f"(measured error {best['rel_error']:.3g}, {best['time_s']:.3g} s)"
+        )
     else:
         best = min(cands, key=lambda c: (c["rel_error"], c["time_s"]))
-        why = (f"no measured solver reaches tolerance {tolerance:g}{where}; most accurate is {best['method']} mesh "
-               f"{best['mesh']} (measured error {best['rel_error']:.3g})")
+        why = (
+            f"no measured solver reaches tolerance {tolerance:g}{where}; "
+            f"most accurate is {best['method']} mesh "
+            f"{best['mesh']} (measured error {best['rel_error']:.3g})"
+        )
     if best["extrapolated"]:
         why += " (outside the measured pressure range: nearest measured range used)"
     elif asked is not None:
         spans = [r["reduced_pressure_range"] for r in rows if r.get("reduced_pressure_range")]
         if spans and (asked[0] < min(a for a, _ in spans) or asked[1] > max(b for _, b in spans)):
-            why += (f" (the measured range is p/(E* h'rms) {min(a for a, _ in spans):.3g}-{max(b for _, b in spans):.3g};"
-                    " pressures outside it use the nearest range)")
+            why += (
+                " (the measured range is p/(E* h'rms) "
+                f"{min(a for a, _ in spans):.3g}-{max(b for _, b in spans):.3g};"
+                " pressures outside it use the nearest range)"
+            )
     if notes:
         why += "; " + "; ".join(sorted(set(notes)))
     return {"method": best["method"], "mesh": best["mesh"], "expected_error": best["rel_error"],
@@ -165,7 +213,9 @@ def choose_method(tolerance: float, table: dict[str, Any] | None = None, *, redu
 
 
 def choose_method_for_scene(scene, table: dict[str, Any] | None = None) -> dict[str, Any]:
-    """Return the ``auto`` choice for a scene: the measured rough-surface table, or MDR for an axisymmetric profile.
+    """Return the ``auto`` choice for a scene.
+
+    The measured rough-surface table, or MDR for an axisymmetric profile.
 
     The table measures rough contacts only.  For a sphere, cone, flat punch or power-law profile
     the MDR is exact (Popov & Hess; Hertz force error 4e-7 at 1999 springs, docs/contact.md), so
@@ -173,6 +223,13 @@ def choose_method_for_scene(scene, table: dict[str, Any] | None = None) -> dict[
     """
     tol = float(scene.contact.tolerance)
     if getattr(scene.geometry, "profile", None) != "rough":
-        return {"method": "mdr", "mesh": None, "expected_error": None, "expected_time_s": None, "reduced_pressure_range": None,
-                "why": f"MDR is exact for the axisymmetric {scene.geometry.profile} profile (rough-surface table not applicable)"}
+        return {
+            "method": "mdr",
+            "mesh": None,
+            "expected_error": None,
+            "expected_time_s": None,
+            "reduced_pressure_range": None,
+            "why": f"MDR is exact for the axisymmetric {scene.geometry.profile} "
+                   "profile (rough-surface table not applicable)",
+        }
     return choose_method(tol, table, reduced_pressures=reduced_pressures_of_scene(scene))

@@ -124,7 +124,15 @@ def axisymmetric_profile(
         R = check_positive("radius", _required("radius", radius), "m")
         g = ax**2 / R
     elif kind == "cone":
-        alpha = check_range("half_angle_deg", _required("half_angle_deg", half_angle_deg), 0.0, 90.0, lo_open=True, hi_open=True, unit="deg")
+        alpha = check_range(
+            "half_angle_deg",
+            _required("half_angle_deg", half_angle_deg),
+            0.0,
+            90.0,
+            lo_open=True,
+            hi_open=True,
+            unit="deg",
+        )
         g = 0.5 * math.pi * ax / math.tan(math.radians(alpha))
     elif kind == "flat":
         R = check_positive("radius", _required("radius", radius), "m")
@@ -187,13 +195,17 @@ def profile_transform_tabulated(r, f, x, *, n_quad: int = 96) -> np.ndarray:
     r = np.asarray(r, dtype=float)
     f = np.asarray(f, dtype=float)
     if r.ndim != 1 or r.shape != f.shape or r.size < 4:
-        raise ParameterError("r, f", "two 1D arrays of equal length >= 4", f"shapes {r.shape}, {f.shape}")
+        raise ParameterError(
+            "r, f", "two 1D arrays of equal length >= 4", f"shapes {r.shape}, {f.shape}"
+        )
     if not (np.all(np.isfinite(r)) and np.all(np.isfinite(f))):
         raise ParameterError("f", "finite values", "non-finite entries")
     if np.any(np.diff(r) <= 0) or r[0] < 0:
         raise ParameterError("r", "increasing radii >= 0", "unsorted or negative radii")
     if np.max(np.abs(x)) > r[-1] * (1 + 1e-12):
-        raise ParameterError("x", f"|x| <= {r[-1]:g} m (the table's extent)", float(np.max(np.abs(x))))
+        raise ParameterError(
+            "x", f"|x| <= {r[-1]:g} m (the table's extent)", float(np.max(np.abs(x)))
+        )
     spline = CubicSpline(r, f).derivative()
     return profile_transform(spline, x, n_quad=n_quad)
 
@@ -205,7 +217,9 @@ def _as_row(x, g) -> tuple[np.ndarray, np.ndarray, float]:
     x = np.asarray(x, dtype=float)
     g = np.asarray(g, dtype=float)
     if x.ndim != 1 or x.shape != g.shape or x.size < 2:
-        raise ParameterError("x, g", "two 1D arrays of equal length >= 2", f"shapes {x.shape}, {g.shape}")
+        raise ParameterError(
+            "x, g", "two 1D arrays of equal length >= 2", f"shapes {x.shape}, {g.shape}"
+        )
     dx = (x[-1] - x[0]) / (x.size - 1)
     if not dx > 0:
         raise ParameterError("x", "increasing, uniformly spaced positions", "non-increasing")
@@ -266,7 +280,7 @@ def _edge_weights(f: np.ndarray, dx: float, lengths: bool) -> np.ndarray:
 
 
 def normal_force(x, g, d, E_star) -> float:
-    """Normal force (N) of the spring row for a rigid indentation ``d`` (m), no adhesion.
+    """Return the normal force (N) of the spring row at rigid indentation ``d`` (m), no adhesion.
 
     ``F = E* int max(d - g(x), 0) dx`` over the piecewise-linear row, edges
     resolved sub-grid.  For an axisymmetric profile this is the 3D force.
@@ -286,7 +300,7 @@ def normal_force(x, g, d, E_star) -> float:
 
 
 def normal_stiffness(x, g, d, E_star) -> float:
-    """Normal contact stiffness ``dF/dd`` (N/m) = E* times the contact length of the row."""
+    """Return the normal stiffness ``dF/dd`` (N/m) = E* times the contact length of the row."""
     return float(E_star) * contact_length(x, g, d)
 
 
@@ -338,11 +352,15 @@ class AxisymmetricMDR:
 
         x, g, dx = _as_row(x, g)
         self.E_star = check_positive("E_star", E_star, "Pa")
-        self.work_of_adhesion = check_range("work_of_adhesion", work_of_adhesion, 0.0, None, unit="J/m^2")
+        self.work_of_adhesion = check_range(
+            "work_of_adhesion", work_of_adhesion, 0.0, None, unit="J/m^2"
+        )
         keep = (x >= -1e-12 * dx) & np.isfinite(g)
         xh, gh = np.abs(x[keep]), g[keep]
         if xh.size < 4:
-            raise ParameterError("n_springs", "at least 4 finite springs on the half row", int(xh.size))
+            raise ParameterError(
+                "n_springs", "at least 4 finite springs on the half row", int(xh.size)
+            )
         self.dx = dx
         self.x_edge = float(xh[-1])
         # A punch wall (inf beyond): the edge is half a cell further out.
@@ -356,7 +374,7 @@ class AxisymmetricMDR:
 
     # --- primitive pieces -------------------------------------------------
     def g(self, x):
-        """Transformed gap (m) at ``|x|``."""
+        """Return the transformed gap (m) at ``|x|``."""
         return self._g(np.abs(x))
 
     def _int_g(self, a):
@@ -365,7 +383,8 @@ class AxisymmetricMDR:
     def _check_a(self, a):
         if np.any(np.asarray(a) > self.x_edge * (1 + 1e-12)):
             raise NoContactError(
-                f"contact radius {float(np.max(a)):.6g} m exceeds the spring row (x_max = {self.x_edge:.6g} m); increase x_max"
+                f"contact radius {float(np.max(a)):.6g} m exceeds the "
+                f"spring row (x_max = {self.x_edge:.6g} m); increase x_max"
             )
 
     # --- non-adhesive -------------------------------------------------------
@@ -383,7 +402,7 @@ class AxisymmetricMDR:
         return float(brentq(lambda a: float(self._g(a)) - d, 0.0, hi, xtol=1e-15 * hi, rtol=1e-15))
 
     def force(self, d: float) -> float:
-        """Normal force (N) at indentation ``d`` (m) (adhesive when ``work_of_adhesion > 0``)."""
+        """Return the normal force (N) at indentation ``d`` (m), with adhesion if any."""
         if self.work_of_adhesion > 0:
             return self.jkr_at_indentation(d)[1]
         a = self.radius(d)
@@ -432,7 +451,15 @@ class AxisymmetricMDR:
         if up.size == 0:
             raise NoContactError("adhesive minimum not inside the spring row; increase x_max")
         i = int(up[0])
-        return float(brentq(lambda x: float(self._jkr_slopes(x)[which]), a[i], a[i + 1], xtol=1e-15 * a[i + 1], rtol=1e-15))
+        return float(
+            brentq(
+                lambda x: float(self._jkr_slopes(x)[which]),
+                a[i],
+                a[i + 1],
+                xtol=1e-15 * a[i + 1],
+                rtol=1e-15,
+            )
+        )
 
     def pull_off(self, control: str = "force") -> dict:
         """Pull-off (N, negative = tensile) under ``"force"`` or ``"displacement"`` control.
@@ -446,11 +473,17 @@ class AxisymmetricMDR:
             ``force`` (N), ``indentation`` (m), ``contact_radius`` (m).
         """
         if self.work_of_adhesion <= 0:
-            raise ParameterError("work_of_adhesion", "a value > 0 for a pull-off force", self.work_of_adhesion)
+            raise ParameterError(
+                "work_of_adhesion", "a value > 0 for a pull-off force", self.work_of_adhesion
+            )
         if control not in ("force", "displacement"):
             raise ParameterError("control", "one of ['force', 'displacement']", control)
         a = self._stationary(1 if control == "force" else 0)
-        return {"force": float(self.jkr_force(a)), "indentation": float(self.jkr_indentation(a)), "contact_radius": a}
+        return {
+            "force": float(self.jkr_force(a)),
+            "indentation": float(self.jkr_indentation(a)),
+            "contact_radius": a,
+        }
 
     def jkr_at_indentation(self, d: float) -> tuple[float, float]:
         """Contact radius (m) and force (N) on the stable (larger-a) JKR branch at ``d`` (m).
@@ -463,11 +496,15 @@ class AxisymmetricMDR:
         a_c = self._stationary(0)
         d_c = float(self.jkr_indentation(a_c))
         if d < d_c:
-            raise NoContactError(f"indentation {d:.6g} m is below the pull-off indentation {d_c:.6g} m")
+            raise NoContactError(
+                f"indentation {d:.6g} m is below the pull-off indentation {d_c:.6g} m"
+            )
         hi = self.x_edge
         if float(self.jkr_indentation(hi)) < d:
             self._check_a(hi * 1.0001)
-        a = brentq(lambda s: float(self.jkr_indentation(s)) - d, a_c, hi, xtol=1e-15 * hi, rtol=1e-15)
+        a = brentq(
+            lambda s: float(self.jkr_indentation(s)) - d, a_c, hi, xtol=1e-15 * hi, rtol=1e-15
+        )
         return float(a), float(self.jkr_force(a))
 
     # --- inverse transforms --------------------------------------------------

@@ -9,9 +9,9 @@ of the MDR and BEM solvers; they are independent of both.
 
 References
 ----------
-K. L. Johnson, *Contact Mechanics*, Cambridge (1985). doi:10.1017/CBO9781139171731
-K. L. Johnson, K. Kendall, A. D. Roberts, Proc. R. Soc. A 324, 301 (1971). doi:10.1098/rspa.1971.0141
-R. D. Mindlin, H. Deresiewicz, J. Appl. Mech. 20, 327 (1953).
+K. L. Johnson, *Contact Mechanics*, Cambridge (1985). doi:10.1017/CBO9781139171731 K. L. Johnson, K.
+Kendall, A. D. Roberts, Proc. R. Soc. A 324, 301 (1971). doi:10.1098/rspa.1971.0141 R. D. Mindlin,
+H. Deresiewicz, J. Appl. Mech. 20, 327 (1953).
 """
 
 from __future__ import annotations
@@ -83,7 +83,9 @@ def hertz_displacement(r, d, R):
     a = float(hertz_radius(d, R))
     r = np.asarray(r, dtype=float)
     rr = np.maximum(r, a)
-    outside = ((2 * a * a - rr * rr) * np.arcsin(a / rr) + a * np.sqrt(rr * rr - a * a)) / (math.pi * R)
+    outside = ((2 * a * a - rr * rr) * np.arcsin(a / rr) + a * np.sqrt(rr * rr - a * a)) / (
+        math.pi * R
+    )
     return np.where(r <= a, d - r * r / (2 * R), outside)
 
 
@@ -128,7 +130,9 @@ def flat_punch_pressure(r, d, R, E_star):
 
 def power_law_force(d, exponent, coefficient, E_star):
     """Force (N) for ``f = c r^n``: ``F = 2 E* d a n/(n+1)`` with ``kappa_n c a^n = d``."""
-    k = math.sqrt(math.pi) * math.exp(math.lgamma(exponent / 2 + 1) - math.lgamma(exponent / 2 + 0.5))
+    k = math.sqrt(math.pi) * math.exp(
+        math.lgamma(exponent / 2 + 1) - math.lgamma(exponent / 2 + 0.5)
+    )
     d = np.asarray(d, dtype=float)
     a = (d / (k * coefficient)) ** (1.0 / exponent)
     return 2.0 * E_star * d * a * exponent / (exponent + 1.0)
@@ -146,7 +150,9 @@ def jkr_indentation(a, R, E_star, work_of_adhesion):
 def jkr_force(a, R, E_star, work_of_adhesion):
     """JKR force (N) at contact radius a (m): ``F = 4 E* a^3/(3R) - sqrt(8 pi w E* a^3)``."""
     a = np.asarray(a, dtype=float)
-    return 4.0 * E_star * a**3 / (3.0 * R) - np.sqrt(8.0 * math.pi * work_of_adhesion * E_star * a**3)
+    return 4.0 * E_star * a**3 / (3.0 * R) - np.sqrt(
+        8.0 * math.pi * work_of_adhesion * E_star * a**3
+    )
 
 
 def jkr_pull_off_force_control(R, work_of_adhesion):
@@ -185,7 +191,9 @@ def mindlin_unloading_force(u, u_amp, d, R, mu, E_star, G_star):
     ``F(u) = F(u_amp) - 2 F_virgin((u_amp - u)/2)`` (exact for Hertz at constant normal force).
     """
     F_amp = mindlin_force(u_amp, d, R, mu, E_star, G_star)
-    return F_amp - 2.0 * mindlin_force((u_amp - np.asarray(u, dtype=float)) / 2.0, d, R, mu, E_star, G_star)
+    return F_amp - 2.0 * mindlin_force(
+        (u_amp - np.asarray(u, dtype=float)) / 2.0, d, R, mu, E_star, G_star
+    )
 
 
 def mindlin_dissipation(u_amp, d, R, mu, E_star, G_star):
@@ -199,5 +207,7 @@ def mindlin_dissipation(u_amp, d, R, mu, E_star, G_star):
     FN = float(hertz_force(d, R, E_star))
     ua = float(u_amp)
     uc = min(ua, us)
-    integral = mu * FN * (uc - 0.4 * us * (1.0 - (1.0 - uc / us) ** 2.5)) + mu * FN * max(ua - us, 0.0)
+    integral = mu * FN * (uc - 0.4 * us * (1.0 - (1.0 - uc / us) ** 2.5)) + mu * FN * max(
+        ua - us, 0.0
+    )
     return 8.0 * integral - 4.0 * ua * float(mindlin_force(uc, d, R, mu, E_star, G_star))

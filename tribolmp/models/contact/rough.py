@@ -54,7 +54,9 @@ __all__ = [
 CLOSED_FRACTION_LIMIT = 0.10
 
 
-def self_affine_psd(rms_height: float, hurst: float, rolloff_wavelength: float, short_cutoff_wavelength: float) -> Callable:
+def self_affine_psd(
+    rms_height: float, hurst: float, rolloff_wavelength: float, short_cutoff_wavelength: float
+) -> Callable:
     """Isotropic self-affine 2D PSD with a roll-off, normalised to ``rms_height``.
 
     ``C2D(q) = C0`` for ``q < q_r``, ``C0 (q/q_r)^(-2(1+H))`` for
@@ -71,7 +73,11 @@ def self_affine_psd(rms_height: float, hurst: float, rolloff_wavelength: float, 
     qr = 2 * math.pi / check_positive("rolloff_wavelength", rolloff_wavelength, "m")
     qs = 2 * math.pi / check_positive("short_cutoff_wavelength", short_cutoff_wavelength, "m")
     if qs < qr:
-        raise ParameterError("short_cutoff_wavelength", f"a value <= rolloff_wavelength ({rolloff_wavelength:g} m)", short_cutoff_wavelength)
+        raise ParameterError(
+            "short_cutoff_wavelength",
+            f"a value <= rolloff_wavelength ({rolloff_wavelength:g} m)",
+            short_cutoff_wavelength,
+        )
     # 2 pi int q C dq = 2 pi C0 [qr^2/2 + qr^2 (1 - (qs/qr)^(-2H)) / (2H)]
     norm = 2 * math.pi * (qr * qr / 2 + qr * qr * (1 - (qs / qr) ** (-2 * H)) / (2 * H))
     C0 = h * h / norm
@@ -85,7 +91,9 @@ def self_affine_psd(rms_height: float, hurst: float, rolloff_wavelength: float, 
     return C2D
 
 
-def generate_surface(n: int, pixel_size: float, psd2d: Callable, rng: np.random.Generator) -> np.ndarray:
+def generate_surface(
+    n: int, pixel_size: float, psd2d: Callable, rng: np.random.Generator
+) -> np.ndarray:
     """Periodic Gaussian random surface (m) on an ``n x n`` grid with the 2D PSD ``psd2d``.
 
     Fourier coefficients are complex Gaussian with ``<|B_q|^2> = 2 C2D(q) dq^2``;
@@ -102,7 +110,9 @@ def generate_surface(n: int, pixel_size: float, psd2d: Callable, rng: np.random.
     return np.real(np.fft.ifft2(B) * n * n)
 
 
-def fourier_coefficients(psd2d: Callable, side: float, k_max: int, rng: np.random.Generator) -> np.ndarray:
+def fourier_coefficients(
+    psd2d: Callable, side: float, k_max: int, rng: np.random.Generator
+) -> np.ndarray:
     """Random Fourier coefficients (m) of a band-limited periodic surface of side ``side``.
 
     The coefficients ``B[kx + k_max, ky + k_max]`` of the wave vectors
@@ -124,7 +134,10 @@ def fourier_coefficients(psd2d: Callable, side: float, k_max: int, rng: np.rando
 
 
 def surface_from_coefficients(B: np.ndarray, n: int) -> np.ndarray:
-    """Heights (m) on an ``n x n`` grid of the surface ``Re sum B e^{i q.x}`` (see :func:`fourier_coefficients`)."""
+    """Heights (m) on an ``n x n`` grid of the surface ``Re sum B e^{i q.x}``.
+
+    See :func:`fourier_coefficients`.
+    """
     B = np.asarray(B)
     k_max = (B.shape[0] - 1) // 2
     n = check_int("grid_points", n, 2 * k_max + 2)
@@ -153,7 +166,9 @@ def rms_gradient(heights, pixel_size: float) -> float:
     return float(math.sqrt(np.sum(q2 * np.abs(H) ** 2) / (nx * ny) ** 2))
 
 
-def rms_gradient_of_psd(rms_height: float, hurst: float, rolloff_wavelength: float, short_cutoff_wavelength: float) -> float:
+def rms_gradient_of_psd(
+    rms_height: float, hurst: float, rolloff_wavelength: float, short_cutoff_wavelength: float
+) -> float:
     """Rms gradient (1) of :func:`self_affine_psd`: ``sqrt(2 pi int q^3 C2D dq)`` in closed form."""
     h = check_positive("rms_height", rms_height, "m")
     H = check_positive("hurst", hurst)
@@ -170,14 +185,18 @@ def check_heightmap(heights, pixel_size=None) -> np.ndarray:
     """Validate a height map: a finite, square-or-rectangular 2D array with >= 4 points per side."""
     h = np.asarray(heights)
     if h.ndim != 2:
-        raise ParameterError("surface", "a 2D array of heights (m)", f"a {h.ndim}D array of shape {h.shape}")
+        raise ParameterError(
+            "surface", "a 2D array of heights (m)", f"a {h.ndim}D array of shape {h.shape}"
+        )
     if min(h.shape) < 4:
         raise ParameterError("surface", "at least 4 points per side", f"shape {h.shape}")
     if not np.issubdtype(h.dtype, np.number) or np.iscomplexobj(h):
         raise ParameterError("surface", "real numeric heights", str(h.dtype))
     h = np.asarray(h, dtype=float)
     if not np.isfinite(h).all():
-        raise ParameterError("surface", "finite heights", f"{int(np.count_nonzero(~np.isfinite(h)))} NaN/inf values")
+        raise ParameterError(
+            "surface", "finite heights", f"{int(np.count_nonzero(~np.isfinite(h)))} NaN/inf values"
+        )
     if pixel_size is not None:
         check_positive("pixel_size", pixel_size, "m")
     return h
@@ -226,8 +245,13 @@ def psd_1d_from_2d(q, C2D) -> np.ndarray:
     return math.pi * np.asarray(q, dtype=float) * np.asarray(C2D, dtype=float)
 
 
-def _profiles_from_c1d(c1d_of_q: Callable, n: int, dx: float, n_realizations: int, rng: np.random.Generator):
-    """Random 1D profiles (m) with two-sided PSD ``C1D`` on a line of ``n`` points, spacing ``dx``."""
+def _profiles_from_c1d(
+    c1d_of_q: Callable, n: int, dx: float, n_realizations: int, rng: np.random.Generator
+):
+    """Random 1D profiles (m) with two-sided PSD ``C1D``.
+
+    On a line of ``n`` points, spacing ``dx``.
+    """
     n = check_int("n_points", n, 4)
     R = check_int("n_realizations", n_realizations, 1)
     L = n * dx
@@ -280,10 +304,14 @@ def mdr_profiles_from_psd(
         Gaps to the highest point of each profile (m); ``g.min(axis=1) == 0``.
     """
     dx = check_positive("pixel_size", pixel_size, "m")
-    return _profiles_from_c1d(lambda q: psd_1d_from_2d(q, psd2d(q)), n_points, dx, n_realizations, rng)
+    return _profiles_from_c1d(
+        lambda q: psd_1d_from_2d(q, psd2d(q)), n_points, dx, n_realizations, rng
+    )
 
 
-def mdr_profiles_from_heightmap(heights, pixel_size: float, n_realizations: int, rng: np.random.Generator):
+def mdr_profiles_from_heightmap(
+    heights, pixel_size: float, n_realizations: int, rng: np.random.Generator
+):
     """Ensemble of 1D MDR profiles whose spectrum is measured from a height map.
 
     2D map: the radially averaged ``C2D`` is turned into ``C1D = pi q C2D``
@@ -315,10 +343,14 @@ def _profiles_from_line_scan(h, pixel_size, n_realizations, rng):
     """MDR ensemble from a 1D line scan through the inverse Abel transform of its PSD."""
     h = np.asarray(h)
     if h.size < 16 or not np.issubdtype(h.dtype, np.number) or np.iscomplexobj(h):
-        raise ParameterError("surface", "a 2D height map or a real 1D line scan of >= 16 points", f"shape {h.shape}")
+        raise ParameterError(
+            "surface", "a 2D height map or a real 1D line scan of >= 16 points", f"shape {h.shape}"
+        )
     h = np.asarray(h, dtype=float)
     if not np.isfinite(h).all():
-        raise ParameterError("surface", "finite heights", f"{int(np.count_nonzero(~np.isfinite(h)))} NaN/inf values")
+        raise ParameterError(
+            "surface", "finite heights", f"{int(np.count_nonzero(~np.isfinite(h)))} NaN/inf values"
+        )
     dx = check_positive("pixel_size", pixel_size, "m")
     n = h.size
     dq = 2 * math.pi / (n * dx)
@@ -329,7 +361,9 @@ def _profiles_from_line_scan(h, pixel_size, n_realizations, rng):
     if n % 2 == 0:
         C[-1] /= 2.0
     # log-binned periodogram (about 8 bins per decade) -> smooth log-log interpolant
-    edges = np.unique(np.round(np.geomspace(1, k[-1] + 1, 8 * max(1, int(np.log10(k[-1]) + 1)) + 1)).astype(int))
+    edges = np.unique(
+        np.round(np.geomspace(1, k[-1] + 1, 8 * max(1, int(np.log10(k[-1]) + 1)) + 1)).astype(int)
+    )
     idx = np.clip(np.searchsorted(edges, k, side="right") - 1, 0, edges.size - 2)
     cnt = np.bincount(idx, minlength=edges.size - 1)
     Cb = np.bincount(idx, weights=C, minlength=edges.size - 1)
@@ -339,7 +373,9 @@ def _profiles_from_line_scan(h, pixel_size, n_realizations, rng):
     lC = np.log(Cb[ok] / cnt[ok])
     if lq.size < 2:
         raise ParameterError("surface", "a line scan with a resolvable spectrum", "a flat profile")
-    slope = np.gradient(lC, lq) if lq.size > 2 else np.full_like(lq, (lC[1] - lC[0]) / (lq[1] - lq[0]))
+    slope = (
+        np.gradient(lC, lq) if lq.size > 2 else np.full_like(lq, (lC[1] - lC[0]) / (lq[1] - lq[0]))
+    )
     qmax = dq * k[-1]
     t_gl, w_gl = np.polynomial.legendre.leggauss(64)
 
@@ -391,7 +427,8 @@ def _indentation_for_force(g: np.ndarray, dx: float, target: np.ndarray) -> np.n
     gs = np.sort(g, axis=1)
     cs = np.cumsum(gs, axis=1)
     k = np.arange(1, n + 1)
-    # spring-sum force with the k lowest springs in contact: dx (k d - S_k), valid for d in [g_k, g_{k+1}]
+    # spring-sum force with the k lowest springs in contact: dx (k d - S_k),
+    # valid for d in [g_k, g_{k+1}]
     Fk = dx * (k * gs - cs)
     j = np.count_nonzero(Fk < target[:, None], axis=1)
     jj = np.clip(j, 1, n)
@@ -413,7 +450,7 @@ def stiffness_vs_load(
     pressures: Sequence[float],
     nominal_area: float | None = None,
 ) -> Result:
-    """Normal stiffness, force and approach of an MDR profile ensemble against the mean pressure.
+    """Compute stiffness, force and approach of an MDR profile ensemble against mean pressure.
 
     Each 1D profile of line length ``L1D = n dx`` carries the force
     ``F = p A`` of the nominal area ``A`` (default ``L1D^2``, the square of
@@ -451,7 +488,9 @@ def stiffness_vs_load(
     g = np.asarray(g, dtype=float)
     g = g[None, :] if g.ndim == 1 else g
     if x.ndim != 1 or g.shape[1] != x.size or x.size < 2:
-        raise ParameterError("x, g", "x of shape (n,) and g of shape (R, n)", f"shapes {x.shape}, {g.shape}")
+        raise ParameterError(
+            "x, g", "x of shape (n,) and g of shape (R, n)", f"shapes {x.shape}, {g.shape}"
+        )
     E = check_positive("modulus", E_star, "Pa")
     dx = float(x[1] - x[0])
     L = x.size * dx
@@ -471,9 +510,11 @@ def stiffness_vs_load(
     # A line is closed when the indentation reaches its deepest point: every spring touches.
     closed = np.mean(D >= g.max(axis=1)[:, None], axis=0)
     warnings = [
-        f"MDR: {c:.0%} of the lines are fully in contact at {p:g} Pa (> {CLOSED_FRACTION_LIMIT:.0%}): "
+        f"MDR: {c:.0%} of the lines are fully in contact "
+        f"at {p:g} Pa (> {CLOSED_FRACTION_LIMIT:.0%}): "
         f"the stiffness is the punch limit E*L of those lines, not a roughness prediction"
-        for p, c in zip(P, closed) if c > CLOSED_FRACTION_LIMIT
+        for p, c in zip(P, closed)
+        if c > CLOSED_FRACTION_LIMIT
     ]
     res = Result(
         pressure=P,
@@ -493,12 +534,23 @@ def stiffness_vs_load(
         realizations=R,
         method="mdr",
         units={
-            "pressure": "Pa", "force": "N", "stiffness": "N/m", "stiffness_q10": "N/m", "stiffness_q90": "N/m",
-            "approach": "m", "approach_q10": "m", "approach_q90": "m", "nominal_area": "m^2", "line_length": "m",
-            "closed_realizations": "1", "closed_fraction": "1",
+            "pressure": "Pa",
+            "force": "N",
+            "stiffness": "N/m",
+            "stiffness_q10": "N/m",
+            "stiffness_q90": "N/m",
+            "approach": "m",
+            "approach_q10": "m",
+            "approach_q90": "m",
+            "nominal_area": "m^2",
+            "line_length": "m",
+            "closed_realizations": "1",
+            "closed_fraction": "1",
         },
         warnings=warnings,
     )
     res["time_s"] = time.perf_counter() - t0
-    res["message"] = f"{R} realisations x {P.size} pressures; the MDR contact length is not a contact area"
+    res["message"] = (
+        f"{R} realisations x {P.size} pressures; the MDR contact length is not a contact area"
+    )
     return res

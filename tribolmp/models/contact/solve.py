@@ -13,7 +13,6 @@ Two problems are solved by name (``method="mdr"`` or ``"bem"``):
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from dataclasses import dataclass
@@ -21,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import BlowUpError, MissingFeatureError, ParameterError, SurfaceFileError
+from ...errors import BlowUpError, MissingFeatureError, ParameterError
 from ...params import param, renamed, validate_dataclass
 from ..base import MethodRegistry, Result
 from . import mdr as _mdr
@@ -56,27 +55,65 @@ class AxisymmetricParams:
     """
 
     profile: str = param("sphere", choices=_mdr.PROFILE_KINDS, doc="Indenter shape.")
-    E_star: float = param(1e11, unit="Pa", lo=0.0, lo_open=True, hi=1e13, doc="Effective modulus E*.")
-    radius: float = param(1e-3, unit="m", lo=0.0, lo_open=True, hi=1e3, doc="Sphere radius / punch radius.")
-    half_angle_deg: float = param(80.0, unit="deg", lo=0.0, hi=90.0, lo_open=True, hi_open=True, doc="Cone half-angle from the axis.")
-    exponent: float = param(2.0, lo=0.0, lo_open=True, hi=100.0, doc="Power-law exponent n of f = c r^n.")
-    coefficient: float = param(1.0, unit="m^(1-n)", lo=0.0, lo_open=True, doc="Power-law coefficient c.")
-    indentation: float | None = param(None, unit="m", lo=-1e3, hi=1e3, doc="Rigid indentation d (negative only with adhesion).")
-    normal_force: float | None = param(None, unit="N", lo=0.0, lo_open=True, hi=1e12, doc="Prescribed normal force (alternative to d).")
-    work_of_adhesion: float = param(0.0, unit="J/m^2", lo=0.0, hi=1e6, doc="Dupre work of adhesion (JKR via Hess's rule).")
+    E_star: float = param(
+        1e11, unit="Pa", lo=0.0, lo_open=True, hi=1e13, doc="Effective modulus E*."
+    )
+    radius: float = param(
+        1e-3, unit="m", lo=0.0, lo_open=True, hi=1e3, doc="Sphere radius / punch radius."
+    )
+    half_angle_deg: float = param(
+        80.0,
+        unit="deg",
+        lo=0.0,
+        hi=90.0,
+        lo_open=True,
+        hi_open=True,
+        doc="Cone half-angle from the axis.",
+    )
+    exponent: float = param(
+        2.0, lo=0.0, lo_open=True, hi=100.0, doc="Power-law exponent n of f = c r^n."
+    )
+    coefficient: float = param(
+        1.0, unit="m^(1-n)", lo=0.0, lo_open=True, doc="Power-law coefficient c."
+    )
+    indentation: float | None = param(
+        None, unit="m", lo=-1e3, hi=1e3, doc="Rigid indentation d (negative only with adhesion)."
+    )
+    normal_force: float | None = param(
+        None,
+        unit="N",
+        lo=0.0,
+        lo_open=True,
+        hi=1e12,
+        doc="Prescribed normal force (alternative to d).",
+    )
+    work_of_adhesion: float = param(
+        0.0, unit="J/m^2", lo=0.0, hi=1e6, doc="Dupre work of adhesion (JKR via Hess's rule)."
+    )
     springs: int = param(2001, lo=9, hi=10**7, doc="MDR springs over the row.")
     grid_points: int = param(128, lo=16, hi=4096, doc="BEM grid points per side.")
 
     def __post_init__(self) -> None:
         validate_dataclass(self)
         if (self.indentation is None) == (self.normal_force is None):
-            raise ParameterError("indentation", "exactly one of indentation or normal_force", "both" if self.indentation is not None else "neither")
+            raise ParameterError(
+                "indentation",
+                "exactly one of indentation or normal_force",
+                "both" if self.indentation is not None else "neither",
+            )
         if self.indentation is not None and self.indentation <= 0 and self.work_of_adhesion == 0:
-            raise ParameterError("indentation", "a number in (0, 1000] m without adhesion", self.indentation)
+            raise ParameterError(
+                "indentation", "a number in (0, 1000] m without adhesion", self.indentation
+            )
 
     def shape(self) -> dict:
         """Keyword arguments of :func:`~tribolmp.models.contact.mdr.axisymmetric_profile`."""
-        return dict(radius=self.radius, half_angle_deg=self.half_angle_deg, exponent=self.exponent, coefficient=self.coefficient)
+        return dict(
+            radius=self.radius,
+            half_angle_deg=self.half_angle_deg,
+            exponent=self.exponent,
+            coefficient=self.coefficient,
+        )
 
     def f(self, r):
         """Axisymmetric gap f(r) (m) of the indenter (``inf`` outside a flat punch)."""
@@ -106,21 +143,47 @@ class AxisymmetricParams:
 class RoughParams:
     """A rigid rough surface on an elastic half-space, loaded by nominal pressures (SI units)."""
 
-    E_star: float = param(1e11, unit="Pa", lo=0.0, lo_open=True, hi=1e13, doc="Effective modulus E*.")
-    pixel_size: float = param(2e-6, unit="m", lo=0.0, lo_open=True, hi=1.0, doc="Grid spacing of the height map.")
-    pressures: tuple[float, ...] = param((1e5, 1e6, 1e7, 1e8), unit="Pa", lo=0.0, lo_open=True, doc="Nominal pressures.")
+    E_star: float = param(
+        1e11, unit="Pa", lo=0.0, lo_open=True, hi=1e13, doc="Effective modulus E*."
+    )
+    pixel_size: float = param(
+        2e-6, unit="m", lo=0.0, lo_open=True, hi=1.0, doc="Grid spacing of the height map."
+    )
+    pressures: tuple[float, ...] = param(
+        (1e5, 1e6, 1e7, 1e8), unit="Pa", lo=0.0, lo_open=True, doc="Nominal pressures."
+    )
     periodic: bool = param(True, doc="BEM: periodic cell (True) or rigid square punch (False).")
     realizations: int = param(16, lo=1, hi=100_000, doc="MDR ensemble size.")
     rms_height: float = param(0.5e-6, unit="m", lo=0.0, lo_open=True, doc="Generated surfaces: Rq.")
-    hurst: float = param(0.8, lo=0.0, hi=1.0, lo_open=True, doc="Generated surfaces: Hurst exponent.")
-    rolloff_wavelength: float = param(100e-6, unit="m", lo=0.0, lo_open=True, doc="Generated surfaces: roll-off wavelength.")
-    short_cutoff_wavelength: float = param(4e-6, unit="m", lo=0.0, lo_open=True, doc="Generated surfaces: short cut-off.")
+    hurst: float = param(
+        0.8, lo=0.0, hi=1.0, lo_open=True, doc="Generated surfaces: Hurst exponent."
+    )
+    rolloff_wavelength: float = param(
+        100e-6, unit="m", lo=0.0, lo_open=True, doc="Generated surfaces: roll-off wavelength."
+    )
+    short_cutoff_wavelength: float = param(
+        4e-6, unit="m", lo=0.0, lo_open=True, doc="Generated surfaces: short cut-off."
+    )
     grid_points: int = param(256, lo=4, hi=1 << 14, doc="Generated surfaces: points per side.")
-    surface_file: str = param("", doc="Height map (.npy/.asc/.xyz or any SurfaceTopography format); empty = generate from the PSD.")
-    surface_unit: str = param("", doc="Length unit of surface_file when it states none (or overriding it); empty = from the file.")
-    surface_pixel_size: float = param(0.0, unit="m", lo=0.0, doc="Pixel size overriding surface_file's; 0 = from the file.")
-    surface_detrend: str = param("none", choices=("none", "mean", "plane", "curvature"), doc="Detrending of surface_file.")
-    surface_missing: str = param("refuse", choices=("refuse", "fill"), doc="Missing points of surface_file: refuse or fill.")
+    surface_file: str = param(
+        "",
+        doc="Height map (.npy/.asc/.xyz or any SurfaceTopography "
+            "format); empty = generate from the PSD.",
+    )
+    surface_unit: str = param(
+        "",
+        doc="Length unit of surface_file when it states "
+            "none (or overriding it); empty = from the file.",
+    )
+    surface_pixel_size: float = param(
+        0.0, unit="m", lo=0.0, doc="Pixel size overriding surface_file's; 0 = from the file."
+    )
+    surface_detrend: str = param(
+        "none", choices=("none", "mean", "plane", "curvature"), doc="Detrending of surface_file."
+    )
+    surface_missing: str = param(
+        "refuse", choices=("refuse", "fill"), doc="Missing points of surface_file: refuse or fill."
+    )
     seed: int = param(20060327, lo=0, hi=2**63 - 1, doc="Seed of the surface and ensemble draws.")
 
     def __post_init__(self) -> None:
@@ -129,14 +192,19 @@ class RoughParams:
             raise ParameterError("pressures", "at least one pressure", "an empty list")
         for p in self.pressures:
             if p >= self.E_star:
-                raise ParameterError("pressures", f"pressures below the modulus ({self.E_star:g} Pa)", p)
+                raise ParameterError(
+                    "pressures", f"pressures below the modulus ({self.E_star:g} Pa)", p
+                )
 
 
 # ---------------------------------------------------------------- axisymmetric
 
 
 def _radius_estimate(p: AxisymmetricParams, d: float) -> float:
-    """Contact radius (m) the row must cover: the larger of the contact at d and twice that at d = 0 (JKR)."""
+    """Contact radius (m) the row must cover.
+
+    The larger of the contact at d and twice that at d = 0 (JKR).
+    """
     from scipy.optimize import brentq
 
     if p.profile == "flat":
@@ -147,13 +215,16 @@ def _radius_estimate(p: AxisymmetricParams, d: float) -> float:
         return float(p.g(a)) - math.sqrt(2 * math.pi * a * w / p.E_star) - dd
 
     def root(dd):
-        # bracket from below: with adhesion h(0) = -dd may vanish, the physical root is the positive one
+        # bracket from below: with adhesion h(0) = -dd may vanish, the
+        # physical root is the positive one
         lo, hi = 0.0, 1e-15
         while h(hi, dd) < 0:
             lo, hi = hi, 2.0 * hi
             if hi > 1e6:
                 raise ParameterError("indentation", "a contact radius below 1e6 m", dd)
-        return brentq(lambda a: h(a, dd), lo, hi, xtol=1e-14 * hi) if lo > 0 or h(0.0, dd) < 0 else hi
+        return (
+            brentq(lambda a: h(a, dd), lo, hi, xtol=1e-14 * hi) if lo > 0 or h(0.0, dd) < 0 else hi
+        )
 
     a = root(max(d, 0.0))
     if w > 0:
@@ -162,7 +233,10 @@ def _radius_estimate(p: AxisymmetricParams, d: float) -> float:
 
 
 def _row(p: AxisymmetricParams, a_est: float) -> tuple[np.ndarray, np.ndarray]:
-    """Return the spring row covering 1.25 a_est (flat punch: its edge halfway between two springs)."""
+    """Return the spring row covering 1.25 a_est.
+
+    For a flat punch its edge lies halfway between two springs.
+    """
     n = p.springs
     if p.profile == "flat":
         m = (n - 1) // 2
@@ -174,7 +248,16 @@ def _row(p: AxisymmetricParams, a_est: float) -> tuple[np.ndarray, np.ndarray]:
 
 @REG.register("mdr")
 def _solve_mdr(p: AxisymmetricParams) -> Result:
-    out = Result(method="mdr", units={"force": "N", "contact_radius": "m", "indentation": "m", "pull_off_force": "N", "stiffness": "N/m"})
+    out = Result(
+        method="mdr",
+        units={
+            "force": "N",
+            "contact_radius": "m",
+            "indentation": "m",
+            "pull_off_force": "N",
+            "stiffness": "N/m",
+        },
+    )
     if p.indentation is None:
         d = _indentation_for_force(p)
     else:
@@ -190,7 +273,9 @@ def _solve_mdr(p: AxisymmetricParams) -> Result:
             a, F = model.jkr_at_indentation(d)
             po = model.pull_off("force")["force"]
             po_d = model.pull_off("displacement")["force"]
-        out.update(force=F, contact_radius=a, pull_off_force=po, pull_off_force_displacement_control=po_d)
+        out.update(
+            force=F, contact_radius=a, pull_off_force=po, pull_off_force_displacement_control=po_d
+        )
     else:
         x, g = _row(p, _radius_estimate(p, d))
         out.update(
@@ -223,7 +308,10 @@ def _solve_bem(p: AxisymmetricParams) -> Result:
     from .bem import solve_bem
 
     if p.work_of_adhesion > 0:
-        raise MissingFeatureError("work_of_adhesion with method 'bem': the BEM reference is non-adhesive; use --method mdr")
+        raise MissingFeatureError(
+            "work_of_adhesion with method 'bem': the BEM "
+            "reference is non-adhesive; use --method mdr"
+        )
     d = p.indentation if p.indentation is not None else _indentation_for_force(p)
     a = _radius_estimate(p, d)
     n = p.grid_points
@@ -236,18 +324,31 @@ def _solve_bem(p: AxisymmetricParams) -> Result:
     heights = -np.where(np.isfinite(fr), fr, 10.0 * d + float(np.max(fr[np.isfinite(fr)])))
     nit = 0
     if p.normal_force is not None:
-        res = solve_bem(heights, dx, p.E_star, p.normal_force / (L * L), periodic=False, stiffness=False)
+        res = solve_bem(
+            heights, dx, p.E_star, p.normal_force / (L * L), periodic=False, stiffness=False
+        )
         nit = res.nit
     else:
         # Displacement control by a secant search in log F - log d: the
         # continuum force is a power of d for these homogeneous profiles,
         # so two to four warm-started load-controlled solves suffice.
-        expo = {"sphere": 1.5, "cone": 2.0, "flat": 1.0}.get(p.profile, (p.exponent + 1) / p.exponent)
+        expo = {"sphere": 1.5, "cone": 2.0, "flat": 1.0}.get(
+            p.profile, (p.exponent + 1) / p.exponent
+        )
         logF = math.log(float(_mdr.normal_force(*_row(p, a), d, p.E_star)))
         prev = None
         p0 = None
         for _ in range(12):
-            res = solve_bem(heights, dx, p.E_star, math.exp(logF) / (L * L), periodic=False, stiffness=False, tol=1e-12, p0=p0)
+            res = solve_bem(
+                heights,
+                dx,
+                p.E_star,
+                math.exp(logF) / (L * L),
+                periodic=False,
+                stiffness=False,
+                tol=1e-12,
+                p0=p0,
+            )
             p0, nit = res.p, nit + res.nit
             logd = math.log(res.approach)
             if abs(logd - math.log(d)) < 1e-10:
@@ -306,11 +407,17 @@ def _validity_warnings(p: AxisymmetricParams, res: Result) -> list[str]:
     ratio = a / p.radius
     where = "indentation" if p.indentation is not None else "normal_force"
     if not math.isfinite(ratio) or ratio > 1.0:
-        raise ParameterError(where, f"a load whose contact radius stays below the sphere radius {p.radius:.3g} m",
-                             f"contact radius {a:.3g} m = {ratio:.3g} R")
+        raise ParameterError(
+            where,
+            f"a load whose contact radius stays below the sphere radius {p.radius:.3g} m",
+            f"contact radius {a:.3g} m = {ratio:.3g} R",
+        )
     if ratio > SPHERE_DOUBTFUL_A_OVER_R:
-        return [f"contact radius {a:.3g} m is {ratio:.2f} of the sphere radius: the paraboloid (small-strain) "
-                f"approximation is doubtful above a/R = {SPHERE_DOUBTFUL_A_OVER_R}"]
+        return [
+            f"contact radius {a:.3g} m is {ratio:.2f} of the "
+            "sphere radius: the paraboloid (small-strain) "
+            f"approximation is doubtful above a/R = {SPHERE_DOUBTFUL_A_OVER_R}"
+        ]
     return []
 
 
@@ -325,7 +432,9 @@ def load_surface(
     detrend: str = "none",
     missing: str = "refuse",
 ) -> tuple[np.ndarray, float | None]:
-    """Read a height map (m): tribolmp ``.npy`` (+ sidecar JSON), ``.asc``/``.xyz``, or any instrument file.
+    """Read a height map (m).
+
+    Formats: tribolmp ``.npy`` (+ sidecar JSON), ``.asc``/``.xyz``, or any instrument file.
 
     Instrument files (x3p, sur, opd, datx, gwy, MetroPro, plu, nc, ...) go
     through SurfaceTopography (:func:`tribolmp.models.topography.measured.read_surface`):
@@ -339,10 +448,16 @@ def load_surface(
     from .rough import check_heightmap
 
     path = Path(path)
-    if path.suffix.lower() == ".npy" and pixel_size is None and not path.with_suffix(".json").exists():
+    if (
+        path.suffix.lower() == ".npy"
+        and pixel_size is None
+        and not path.with_suffix(".json").exists()
+    ):
         from ..topography.io import read_native
 
-        h, _, _, _ = read_native(path, pixel_size=1.0)  # provisional spacing: the caller supplies the real one
+        h, _, _, _ = read_native(
+            path, pixel_size=1.0
+        )  # provisional spacing: the caller supplies the real one
         return check_heightmap(h), None
     surf = read_surface(path, pixel_size=pixel_size, unit=unit, detrend=detrend, missing=missing)
     return check_heightmap(surf.h), surf.pixel_size
@@ -416,7 +531,14 @@ def _rough_bem(h, dx, E, pressures, periodic, realizations, rng) -> Result:
         warnings=[],
         nit=nit,
         time_s=time.perf_counter() - t0,
-        units={"pressure": "Pa", "force": "N", "stiffness": "N/m", "approach": "m", "mean_gap": "m", "area_fraction": "1"},
+        units={
+            "pressure": "Pa",
+            "force": "N",
+            "stiffness": "N/m",
+            "approach": "m",
+            "mean_gap": "m",
+            "area_fraction": "1",
+        },
     )
 
 
@@ -494,28 +616,41 @@ MAX_PLAUSIBLE_RMS_GRADIENT = 10.0
 
 
 def _check_plausible_surface(h: np.ndarray, dx: float) -> None:
-    """Refuse heights no half-space contact model can treat (before they overflow into a zero stiffness)."""
+    """Refuse heights no half-space contact model can treat.
+
+    They are refused before they overflow into a zero stiffness.
+    """
     top = float(np.max(np.abs(h - h.mean())))
     if not top <= MAX_PLAUSIBLE_HEIGHT_M:
-        raise ParameterError("surface", f"height deviations <= {MAX_PLAUSIBLE_HEIGHT_M:g} m (wrong unit?)",
-                             f"max |h - <h>| = {top:.3g} m")
+        raise ParameterError(
+            "surface",
+            f"height deviations <= {MAX_PLAUSIBLE_HEIGHT_M:g} m (wrong unit?)",
+            f"max |h - <h>| = {top:.3g} m",
+        )
     gx = np.diff(h, axis=0, append=h[:1]) / dx
     gy = np.diff(h, axis=1, append=h[:, :1]) / dx
     grad = float(np.sqrt(np.mean(gx**2 + gy**2)))
     if not grad <= MAX_PLAUSIBLE_RMS_GRADIENT:
-        raise ParameterError("surface", f"an rms gradient <= {MAX_PLAUSIBLE_RMS_GRADIENT:g} (small-slope half-space "
-                             "contact; wrong height unit or pixel size?)", f"{grad:.3g}")
+        raise ParameterError(
+            "surface",
+            f"an rms gradient <= {MAX_PLAUSIBLE_RMS_GRADIENT:g} (small-slope half-space "
+            "contact; wrong height unit or pixel size?)",
+            f"{grad:.3g}",
+        )
 
 
 def _check_finite_stiffness(res: Result, method: str) -> None:
-    """No rough-contact result may hand on a non-finite or zero stiffness where the surfaces touch."""
+    """Refuse a rough-contact result with non-finite or zero stiffness where the surfaces touch."""
     for row in res.get("rows", []):
         k, f = row.get("stiffness"), row.get("force")
         if f is not None and f > 0 and not (k is not None and math.isfinite(k) and k > 0):
             if k is not None and math.isinf(k) and method == "bem":
-                continue  # a closed periodic cell: infinite interfacial stiffness is the exact answer
-            raise BlowUpError(f"rough contact ({method}): stiffness {k!r} N/m at {row.get('pressure'):g} Pa "
-                              "is not a finite positive number")
+                # a closed periodic cell: infinite interfacial stiffness is the exact answer
+                continue
+            raise BlowUpError(
+                f"rough contact ({method}): stiffness {k!r} N/m at {row.get('pressure'):g} Pa "
+                "is not a finite positive number"
+            )
 
 
 def rough_params_from_scene(scene) -> RoughParams:
@@ -558,7 +693,11 @@ def params_from_scene(scene):
         return rough_params_from_scene(scene)
     springs = getattr(getattr(scene, "contact", None), "springs", 2001)
     if not scene.load.normal_force > 0:
-        raise ParameterError("[load].normal_force", f"a force > 0 N for a {geo.profile} contact", scene.load.normal_force)
+        raise ParameterError(
+            "[load].normal_force",
+            f"a force > 0 N for a {geo.profile} contact",
+            scene.load.normal_force,
+        )
     return AxisymmetricParams(
         profile=geo.profile,
         E_star=scene.effective_modulus,
@@ -570,19 +709,34 @@ def params_from_scene(scene):
 
 
 def rough_surface(params: RoughParams, rng: np.random.Generator) -> tuple[np.ndarray, float]:
-    """Return the height map (m) and pixel size (m): read from ``surface_file`` or generated from the PSD."""
+    """Return the height map (m) and pixel size (m).
+
+    Read from ``surface_file`` or generated from the PSD.
+    """
     from .rough import generate_surface, self_affine_psd
 
     if params.surface_file:
-        h, dx = load_surface(params.surface_file, params.surface_pixel_size or None, unit=params.surface_unit or None,
-                             detrend=params.surface_detrend, missing=params.surface_missing)
+        h, dx = load_surface(
+            params.surface_file,
+            params.surface_pixel_size or None,
+            unit=params.surface_unit or None,
+            detrend=params.surface_detrend,
+            missing=params.surface_missing,
+        )
         return h, params.pixel_size if dx is None else dx
-    psd = self_affine_psd(params.rms_height, params.hurst, params.rolloff_wavelength, params.short_cutoff_wavelength)
+    psd = self_affine_psd(
+        params.rms_height, params.hurst, params.rolloff_wavelength, params.short_cutoff_wavelength
+    )
     return generate_surface(params.grid_points, params.pixel_size, psd, rng), params.pixel_size
 
 
-def stiffness_vs_pressure(scene_or_params, *, method: str | None = None, rng: np.random.Generator | None = None,
-                          tolerance: float | None = None) -> Result:
+def stiffness_vs_pressure(
+    scene_or_params,
+    *,
+    method: str | None = None,
+    rng: np.random.Generator | None = None,
+    tolerance: float | None = None,
+) -> Result:
     """Rough-surface stiffness, force and approach at the scene's ``[load].pressures``.
 
     Parameters
@@ -628,18 +782,39 @@ def stiffness_vs_pressure(scene_or_params, *, method: str | None = None, rng: np
         from .rough import rms_gradient
 
         tol = tolerance if tolerance is not None else float(getattr(contact, "tolerance", 0.3))
-        choice = choose_method(tol, reduced_pressures=reduced_pressures(params.pressures, params.E_star, rms_gradient(h, dx)))
+        choice = choose_method(
+            tol,
+            reduced_pressures=reduced_pressures(
+                params.pressures, params.E_star, rms_gradient(h, dx)
+            ),
+        )
         method = choice["method"]
         if method == "bem":
             periodic = True  # the table's BEM errors are those of the periodic cell
-    res = solve_rough(h, dx, params.E_star, params.pressures, method=method, periodic=periodic, realizations=params.realizations, rng=ens_rng)
+    res = solve_rough(
+        h,
+        dx,
+        params.E_star,
+        params.pressures,
+        method=method,
+        periodic=periodic,
+        realizations=params.realizations,
+        rng=ens_rng,
+    )
     if choice is not None and method == "mdr" and res.warnings:
         from .rough import CLOSED_FRACTION_LIMIT
 
         warnings = list(res.warnings)
         res = solve_rough(h, dx, params.E_star, params.pressures, method="bem", periodic=True)
-        res["warnings"] = warnings + [f"auto: MDR closed more than {CLOSED_FRACTION_LIMIT:.0%} of its lines; the periodic BEM was run instead"]
-        choice = dict(choice, method="bem", why=choice["why"] + "; MDR lines closed at run time -> periodic BEM")
+        res["warnings"] = warnings + [
+            f"auto: MDR closed more than {CLOSED_FRACTION_LIMIT:.0%} "
+            "of its lines; the periodic BEM was run instead"
+        ]
+        choice = dict(
+            choice,
+            method="bem",
+            why=choice["why"] + "; MDR lines closed at run time -> periodic BEM",
+        )
     if choice is not None:
         res["choice"] = choice
     res["pixel_size"] = dx
