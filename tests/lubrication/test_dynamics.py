@@ -1,4 +1,7 @@
-"""Film dynamics: constant-load approach (exact, any step) and mixed lubrication with MDR springs."""
+"""Film dynamics: constant-load approach and mixed lubrication.
+
+The approach is exact at any step; mixed lubrication uses MDR springs.
+"""
 
 from __future__ import annotations
 
@@ -8,7 +11,13 @@ import numpy as np
 import pytest
 
 from tribolmp.errors import ParameterError
-from tribolmp.models.lubrication.dynamics import FilmParams, MixedParams, approach, exact_gap, mixed_approach
+from tribolmp.models.lubrication.dynamics import (
+    FilmParams,
+    MixedParams,
+    approach,
+    exact_gap,
+    mixed_approach,
+)
 
 R, ETA = 1e-3, 0.1
 ALPHA = 6 * math.pi * ETA * R**2
@@ -45,11 +54,15 @@ def test_cox_brenner_dynamics_matches_quadrature_of_time():
     from tribolmp.models.lubrication.reference import cox_brenner_force
 
     W, h0 = 1e-3, 1e-5
-    p = FilmParams(radius=R, viscosity=ETA, load=W, gap0=h0, model="cox-brenner", duration=1e-3, steps=5)
+    p = FilmParams(
+        radius=R, viscosity=ETA, load=W, gap0=h0, model="cox-brenner", duration=1e-3, steps=5
+    )
     res = approach(p)
     # t(h) = int_h^h0 c(h') dh' / W with c = F/V; check the time to reach each computed gap
     for t, h in zip(res.t[1:], res.h[1:]):
-        t_q = integrate.quad(lambda s: float(cox_brenner_force(R, ETA, s, 1.0)) / W, h, h0, epsrel=1e-12)[0]
+        t_q = integrate.quad(
+            lambda s: float(cox_brenner_force(R, ETA, s, 1.0)) / W, h, h0, epsrel=1e-12
+        )[0]
         assert t_q == pytest.approx(t, rel=1e-9)
 
 
@@ -61,7 +74,16 @@ def test_shear_thinning_film_collapses_in_finite_time(n):
     C = power_law_squeeze_force(R, ETA, n, 1.0, 1.0)
     m = (3 * n - 1) / (2 * n)
     t_c = h0 ** (1 - m) / ((1 - m) * (W / C) ** (1 / n))  # separable ODE: dh/dt = -(W/C)^(1/n) h^m
-    p = FilmParams(radius=R, viscosity=ETA, load=W, gap0=h0, model="power-law", power_law_index=n, duration=2 * t_c, steps=4)
+    p = FilmParams(
+        radius=R,
+        viscosity=ETA,
+        load=W,
+        gap0=h0,
+        model="power-law",
+        power_law_index=n,
+        duration=2 * t_c,
+        steps=4,
+    )
     res = approach(p)
     assert res.collapsed and res.h[-1] == 0.0 and res.min_gap >= 0
     assert res.h[1] == pytest.approx(h0 * (1 - 0.5) ** (1 / (1 - m)), rel=1e-9)  # at t_c / 2
@@ -80,8 +102,20 @@ def test_mixed_lubrication_smooth_sphere_reduces_to_damper_then_hertz():
     E, W, h0, hc = 1e11, 1e-3, 1e-6, 1e-9
     x, g = axisymmetric_profile("sphere", 2001, 2e-4, radius=R)
     T = 0.05  # contact after ln((h0 + hc)/hc) alpha / W = 0.013 s
-    res = mixed_approach(x, g, MixedParams(viscosity=ETA, E_star=E, load=W, gap0=h0, film_cutoff=hc, duration=T, steps=40,
-                                             nominal_film=False))
+    res = mixed_approach(
+        x,
+        g,
+        MixedParams(
+            viscosity=ETA,
+            E_star=E,
+            load=W,
+            gap0=h0,
+            film_cutoff=hc,
+            duration=T,
+            steps=40,
+            nominal_film=False,
+        ),
+    )
     assert res.summits == 1
     # before contact: one damper on gap + h_c, so (gap + h_c) decays exactly as exp(-W t / alpha)
     sep = -res.d > 0
@@ -100,8 +134,12 @@ def test_mixed_lubrication_rough_profile_any_step(rng):
     noise = np.convolve(rng.standard_normal(x.size), np.ones(9) / 9, mode="same") * 2e-8
     g = x**2 / 1e-3 + noise
     g -= g.min()
-    one = mixed_approach(x, g, MixedParams(viscosity=ETA, E_star=E, load=W, gap0=1e-6, duration=1.0, steps=1))
-    many = mixed_approach(x, g, MixedParams(viscosity=ETA, E_star=E, load=W, gap0=1e-6, duration=1.0, steps=50))
+    one = mixed_approach(
+        x, g, MixedParams(viscosity=ETA, E_star=E, load=W, gap0=1e-6, duration=1.0, steps=1)
+    )
+    many = mixed_approach(
+        x, g, MixedParams(viscosity=ETA, E_star=E, load=W, gap0=1e-6, duration=1.0, steps=50)
+    )
     assert many.summits > 3
     # one huge implicit step: finite, moves towards equilibrium, never past it
     assert np.all(np.isfinite(one.d)) and -1e-6 < one.d[-1] <= one.d_dry
@@ -117,7 +155,9 @@ def test_mixed_more_viscous_film_delays_contact():
 
     x, g = axisymmetric_profile("sphere", 801, 2e-4, radius=R)
     t = [
-        mixed_approach(x, g, MixedParams(viscosity=eta, load=1e-3, gap0=1e-6, duration=2e-2, steps=400)).contact_time
+        mixed_approach(
+            x, g, MixedParams(viscosity=eta, load=1e-3, gap0=1e-6, duration=2e-2, steps=400)
+        ).contact_time
         for eta in (0.05, 0.1)
     ]
     # contact when (h0 + hc) exp(-W t / alpha) = hc: t ~ alpha ~ eta (to one time step)
@@ -159,18 +199,32 @@ def test_mixed_film_is_the_nominal_reynolds_squeeze_film_of_the_apparent_area():
 
     x, g = _rough_mdr_profile()
     W, gap0, L = 1.0, 10e-6, 1.024e-3
-    I = SQUARE_POISSON * L**4
+    i_area = SQUARE_POISSON * L**4
     u0, u1 = g.mean() + gap0, 8 * g.std()
-    T = 6 * ETA * I * (u1**-2 - u0**-2) / W  # smooth-plate time to reach u = 8 sigma
-    res = mixed_approach(x, g, MixedParams(viscosity=ETA, E_star=1.13e11, load=W, gap0=gap0, duration=T, steps=50))
+    T = 6 * ETA * i_area * (u1**-2 - u0**-2) / W  # smooth-plate time to reach u = 8 sigma
+    res = mixed_approach(
+        x, g, MixedParams(viscosity=ETA, E_star=1.13e11, load=W, gap0=gap0, duration=T, steps=50)
+    )
     assert res.apparent_length == pytest.approx(L, rel=1e-12)
-    assert res.film_resistance[0] == pytest.approx(12 * ETA * I / u0**3, rel=1e-2)
-    u_plate = (u0**-2 + W * res.t / (6 * ETA * I)) ** -0.5
+    assert res.film_resistance[0] == pytest.approx(12 * ETA * i_area / u0**3, rel=1e-2)
+    u_plate = (u0**-2 + W * res.t / (6 * ETA * i_area)) ** -0.5
     assert np.max(np.abs(res.separation / u_plate - 1)) < 1e-2
     # without roughness in the film and without summit dampers it is the plate to the
     # accuracy of the tabulated primitive (measured 1.7e-6)
-    smooth = mixed_approach(x, g, MixedParams(viscosity=ETA, E_star=1.13e11, load=W, gap0=gap0, duration=T, steps=50,
-                                              flow_factor="smooth", summit_dampers=False))
+    smooth = mixed_approach(
+        x,
+        g,
+        MixedParams(
+            viscosity=ETA,
+            E_star=1.13e11,
+            load=W,
+            gap0=gap0,
+            duration=T,
+            steps=50,
+            flow_factor="smooth",
+            summit_dampers=False,
+        ),
+    )
     assert smooth.separation == pytest.approx(u_plate, rel=1e-5)
 
 
@@ -179,16 +233,24 @@ def test_mixed_lubrication_on_contact_engineers_rough_profile():
     E, W, gap0 = 1.13e11, 1.0, 1e-6
     from tribolmp.models.lubrication.flow_factor import SQUARE_POISSON
 
-    I = SQUARE_POISSON * 1.024e-3**4
+    i_area = SQUARE_POISSON * 1.024e-3**4
     # smooth-plate time from u0 = mean(g) + gap0 to first touch (u = mean(g)): 9.9 ms
-    t_plate = 6 * ETA * I * (g.mean() ** -2 - (g.mean() + gap0) ** -2) / W
-    long = mixed_approach(x, g, MixedParams(viscosity=0.1, E_star=E, load=W, gap0=gap0, duration=1.0, steps=100))
+    t_plate = 6 * ETA * i_area * (g.mean() ** -2 - (g.mean() + gap0) ** -2) / W
+    long = mixed_approach(
+        x, g, MixedParams(viscosity=0.1, E_star=E, load=W, gap0=gap0, duration=1.0, steps=100)
+    )
     assert long.summits > 10 and long.normal_force_source == "contact.mdr" and not long.sealed
     assert long.d[-1] == pytest.approx(long.d_dry, rel=1e-9)  # ends at the dry MDR equilibrium
     # load sharing: early on the film carries the load, at the end the springs do
-    assert long.fluid_force[1] == pytest.approx(W, rel=1e-12) and long.spring_force[-1] == pytest.approx(W, rel=1e-9)
+    assert long.fluid_force[1] == pytest.approx(W, rel=1e-12) and long.spring_force[
+        -1
+    ] == pytest.approx(W, rel=1e-9)
     assert np.all(np.diff(long.d) >= 0)
-    res = mixed_approach(x, g, MixedParams(viscosity=0.1, E_star=E, load=W, gap0=gap0, duration=2 * t_plate, steps=800))
+    res = mixed_approach(
+        x,
+        g,
+        MixedParams(viscosity=0.1, E_star=E, load=W, gap0=gap0, duration=2 * t_plate, steps=800),
+    )
     # The film is squeezed out at the nominal scale: first touch after 11.3 ms (1.145 t_plate),
     # not the old 0.4 us.  The rough film resists more than the smooth plate (Bruggeman to
     # second order: k_eff = u^3 - 1.5 u sigma^2 < u^3), and the 2D-checked flow factor
@@ -200,7 +262,9 @@ def test_cox_brenner_gap_below_float_range_is_stated_not_clamped():
     # 1e6 N: ln h falls by W dt / alpha = 9.4e11 per step.  The old inverse clamped h at
     # e^-700 without a word (log_h stuck at -700); now ln h follows the small-gap asymptote
     # Phi = alpha ln h (corrections (h/R) ln(R/h) < 1e-300) and the message says h underflowed.
-    p = FilmParams(radius=R, viscosity=ETA, load=1e6, gap0=1e-5, model="cox-brenner", duration=1.0, steps=3)
+    p = FilmParams(
+        radius=R, viscosity=ETA, load=1e6, gap0=1e-5, model="cox-brenner", duration=1.0, steps=3
+    )
     res = approach(p)
     assert np.all(res.h[1:] == 0.0) and not res.collapsed
     assert np.allclose(np.diff(res.log_h[1:]), -1e6 * (1 / 3) / ALPHA, rtol=1e-12)

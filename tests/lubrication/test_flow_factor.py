@@ -1,4 +1,7 @@
-"""Film resistance of a rough apparent contact: flow factor against a resolved 2D rough Reynolds solve."""
+"""Film resistance of a rough apparent contact.
+
+Flow factor against a resolved 2D rough Reynolds solve.
+"""
 
 from __future__ import annotations
 
@@ -28,7 +31,9 @@ def test_rough_reynolds_solver_on_a_uniform_gap_is_the_plate_squeeze_film(n, tol
 def _surfaces(n, dx, sigma, seeds, hurst=0.8):
     from tribolmp.models.contact.rough import generate_surface, self_affine_psd
 
-    psd = self_affine_psd(sigma, hurst, 16 * dx, 4 * dx)  # 8 roll-off wavelengths across, cut-off 4 pixels
+    psd = self_affine_psd(
+        sigma, hurst, 16 * dx, 4 * dx
+    )  # 8 roll-off wavelengths across, cut-off 4 pixels
     for s in seeds:
         z = generate_surface(n, dx, psd, np.random.default_rng(s))
         yield z - z.mean()
@@ -37,7 +42,7 @@ def _surfaces(n, dx, sigma, seeds, hurst=0.8):
 @pytest.mark.parametrize("hurst", [0.8, 0.5])
 @pytest.mark.parametrize("method, expect_pass", [("bruggeman", True), ("smooth", False)])
 def test_flow_factor_film_matches_resolved_rough_reynolds(method, expect_pass, hurst):
-    """The nominal film with the Bruggeman conductance against the 2D Reynolds solution on the rough gap.
+    """The nominal film with the Bruggeman conductance against 2D Reynolds on the rough gap.
 
     Four 128^2 surfaces per class (H = 0.8 or 0.5, roll-off 16 px, cut-off 4 px),
     rigid flat at u/sigma = 4.5, 5 and 6 (no contact).  Measured ratio
@@ -55,9 +60,13 @@ def test_flow_factor_film_matches_resolved_rough_reynolds(method, expect_pass, h
         for z in zs:
             u = us * z.std()
             h = np.clip(u - z, 0.0, None)
-            assert h.min() > 0  # the comparison is in the open-film regime (see docs/lubrication.md)
+            assert (
+                h.min() > 0
+            )  # the comparison is in the open-film regime (see docs/lubrication.md)
             ref = ff.rough_reynolds_squeeze(h, dx, ETA)
-            c, _, closed = ff.film_resistance(h.ravel(), ETA, "square", n * dx, method=method, separation=u)
+            c, _, closed = ff.film_resistance(
+                h.ravel(), ETA, "square", n * dx, method=method, separation=u
+            )
             ratios.append(ref.resistance / float(c))
         ok.append(abs(np.mean(ratios) - 1) < 0.02)
     assert all(ok) is expect_pass

@@ -57,7 +57,9 @@ def test_point_elements_need_size_below_half_gap():
         pos_b = np.stack([X.ravel(), Y.ravel(), np.zeros(X.size)], 1)
         area_b = np.full(X.size, s * s)
         f = pairlaw.pair_forces([[0, 0, z]], [1.0], [0, 0, -V], pos_b, area_b, [0, 0, 0], ETA, R)
-        return f[0, 2] / (1 - 1 / (1 + 1600))  # remove the plane-truncation share (z/40z)^2 exactly to O(1e-7)
+        return f[0, 2] / (
+            1 - 1 / (1 + 1600)
+        )  # remove the plane-truncation share (z/40z)^2 exactly to O(1e-7)
 
     good = plane_sum(z / 2) / exact - 1
     bad = plane_sum(2 * z) / exact - 1
@@ -70,5 +72,7 @@ def test_point_elements_need_size_below_half_gap():
 def test_pair_law_is_central_so_pure_sliding_at_equal_height_gives_no_normal_force():
     # Two elements side by side sliding perpendicular to their separation do not approach:
     # the central law gives zero -- it cannot represent the tangential drag (use GCB for that).
-    f = pairlaw.pair_forces([[0, 0, 1e-6]], [1e-12], [1.0, 0, 0], [[0, 1e-6, 1e-6]], [1e-12], [0, 0, 0], ETA, R)
+    f = pairlaw.pair_forces(
+        [[0, 0, 1e-6]], [1e-12], [1.0, 0, 0], [[0, 1e-6, 1e-6]], [1e-12], [0, 0, 0], ETA, R
+    )
     assert np.allclose(f, 0.0)

@@ -1,4 +1,7 @@
-"""Lubricated polishing: roughness history against a particle-resolved simulation, mass balance, the film."""
+"""Lubricated polishing.
+
+Roughness history against a particle-resolved simulation, mass balance, the film.
+"""
 
 from __future__ import annotations
 
@@ -6,7 +9,12 @@ import numpy as np
 import pytest
 
 from tribolmp.errors import ParameterError
-from tribolmp.models.lubrication.polishing import PolishParams, params_from_scene, polish, squeeze_out_time
+from tribolmp.models.lubrication.polishing import (
+    PolishParams,
+    params_from_scene,
+    polish,
+    squeeze_out_time,
+)
 from tribolmp.scene import parse_scene
 
 BASE = dict(grid_points=32, steps=30, duration=6.0)
@@ -16,8 +24,12 @@ def _pair(eta, seed, **kw):
     from tribolmp.models.lubrication.polishing import polish_resolved, self_affine_surface
 
     p = PolishParams(grid_points=32, steps=6, duration=30.0, viscosity=eta, **kw)
-    h0 = self_affine_surface(32, p.pixel_size, p.rms_height, p.hurst, p.rolloff_wavelength, np.random.default_rng(seed))
-    return polish(p, rng=np.random.default_rng(seed + 10), h0=h0), polish_resolved(p, rng=np.random.default_rng(seed + 20), h0=h0)
+    h0 = self_affine_surface(
+        32, p.pixel_size, p.rms_height, p.hurst, p.rolloff_wavelength, np.random.default_rng(seed)
+    )
+    return polish(p, rng=np.random.default_rng(seed + 10), h0=h0), polish_resolved(
+        p, rng=np.random.default_rng(seed + 20), h0=h0
+    )
 
 
 def test_roughness_evolution_matches_a_particle_resolved_simulation():
@@ -50,7 +62,9 @@ def test_viscous_film_reduces_removal_and_the_mean_field_underestimates_it():
 
 
 def test_roughness_decreases_and_mass_balances():
-    res = polish(PolishParams(grid_points=48, steps=60, duration=60.0), rng=np.random.default_rng(3))
+    res = polish(
+        PolishParams(grid_points=48, steps=60, duration=60.0), rng=np.random.default_rng(3)
+    )
     assert res.sq[-1] < 0.8 * res.sq[0]
     # coarse trend: each third of the run ends smoother than the previous one
     thirds = res.sq[:: len(res.sq) // 3]
@@ -70,7 +84,10 @@ def test_squeeze_out_time_is_the_pair_law_integral():
     # dt = c(h) dh / F with c(h) = F_pairlaw(V = 1) / 1
     # integrate in u = ln h (the integrand ~ 1/h spans three decades)
     t = integrate.quad(
-        lambda u: pairlaw_sphere_plane_exact(a, eta, np.exp(u), 1.0) * np.exp(u) / F, np.log(hc), np.log(hf), epsrel=1e-13
+        lambda u: pairlaw_sphere_plane_exact(a, eta, np.exp(u), 1.0) * np.exp(u) / F,
+        np.log(hc),
+        np.log(hf),
+        epsrel=1e-13,
     )[0]
     assert float(squeeze_out_time(a, eta, F, hf, hc)) == pytest.approx(t, rel=1e-9)
 
@@ -87,7 +104,9 @@ def test_deterministic_with_seed_and_validation():
 
 
 def test_params_from_scene():
-    scene = parse_scene({"lubricant": {"viscosity": 0.3}, "polishing": {"pressure": 2e5, "velocity": 0.2}})
+    scene = parse_scene(
+        {"lubricant": {"viscosity": 0.3}, "polishing": {"pressure": 2e5, "velocity": 0.2}}
+    )
     p = params_from_scene(scene, grid_points=16)
     assert (p.viscosity, p.pressure, p.velocity, p.grid_points) == (0.3, 2e5, 0.2, 16)
     assert p.E_star == pytest.approx(scene.effective_modulus)

@@ -30,7 +30,9 @@ def test_brenner_matches_lorentz_far_field(eps, tol):
 
 def test_damper_is_the_6pi_form_and_brenner_force_scales():
     R, eta, h, V = 2e-3, 0.05, 1e-7, 3e-4
-    assert ref.damper_force(R, eta, h, V) == pytest.approx(6 * math.pi * eta * R**2 * V / h, rel=1e-15)
+    assert ref.damper_force(R, eta, h, V) == pytest.approx(
+        6 * math.pi * eta * R**2 * V / h, rel=1e-15
+    )
     # Brenner: F = 6 pi eta R V lambda, linear in V and eta (Stokes flow)
     f1 = ref.brenner_force(R, eta, h, V)
     assert ref.brenner_force(R, 2 * eta, h, -V) == pytest.approx(-2 * f1, rel=1e-14)
@@ -67,10 +69,14 @@ def test_power_law_reduces_to_damper_and_matches_direct_integration():
     def minus_dpdr(r):
         h = h0 + r * r / (2 * R)
         q = V * r / 2
-        return brentq(lambda G: ref.power_law_slot_flux(h, G, K, n) - q, 0.0, 1e20, xtol=1e-30, rtol=1e-13)
+        return brentq(
+            lambda G: ref.power_law_slot_flux(h, G, K, n) - q, 0.0, 1e20, xtol=1e-30, rtol=1e-13
+        )
 
     rmax = 50 * rc
-    F = integrate.quad(lambda r: math.pi * r * r * minus_dpdr(r), 0, rmax, limit=200, epsrel=1e-10)[0]
+    F = integrate.quad(lambda r: math.pi * r * r * minus_dpdr(r), 0, rmax, limit=200, epsrel=1e-10)[
+        0
+    ]
     assert F == pytest.approx(ref.power_law_squeeze_force(R, K, n, h0, V, r_max=rmax), rel=1e-7)
 
 
@@ -88,15 +94,21 @@ def test_power_law_just_above_one_third_and_refused_at_or_below():
 def test_power_law_scaling_exponents():
     R, K, h0, V, n = 1e-3, 0.1, 1e-6, 1e-3, 0.7
     f = ref.power_law_squeeze_force(R, K, n, h0, V)
-    assert ref.power_law_squeeze_force(R, K, n, 4 * h0, V) / f == pytest.approx(4 ** ((1 - 3 * n) / 2), rel=1e-12)
+    assert ref.power_law_squeeze_force(R, K, n, 4 * h0, V) / f == pytest.approx(
+        4 ** ((1 - 3 * n) / 2), rel=1e-12
+    )
     assert ref.power_law_squeeze_force(R, K, n, h0, 3 * V) / f == pytest.approx(3**n, rel=1e-12)
-    assert ref.power_law_squeeze_force(2 * R, K, n, h0, V) / f == pytest.approx(2 ** ((n + 3) / 2), rel=1e-12)
+    assert ref.power_law_squeeze_force(2 * R, K, n, h0, V) / f == pytest.approx(
+        2 ** ((n + 3) / 2), rel=1e-12
+    )
 
 
 def test_couette_eq12_is_2_to_2_6_times_smaller_than_gcb():
     R, eta, U = 1e-3, 0.1, 1e-2
     eps = np.geomspace(1e-4, 1e-2, 7)
-    ratio = ref.gcb_sliding_force(R, eta, eps * R, U) / ref.couette_sliding_force(R, eta, eps * R, U)
+    ratio = ref.gcb_sliding_force(R, eta, eps * R, U) / ref.couette_sliding_force(
+        R, eta, eps * R, U
+    )
     # PHYSICS.md: Eq. 12 is 2-2.6x too small in this range (with L = R)
     assert np.all(ratio > 1.9) and np.all(ratio < 2.7)
 

@@ -20,7 +20,9 @@ def _exact(n, r_max):
 def test_axisymmetric_newtonian_converges_at_second_order():
     errs = []
     for cells in (50, 100, 200):
-        res = solve(ReynoldsParams(radius=R, gap=H0, velocity=V, viscosity=ETA, cells=cells, domain=30))
+        res = solve(
+            ReynoldsParams(radius=R, gap=H0, velocity=V, viscosity=ETA, cells=cells, domain=30)
+        )
         errs.append(abs(res.force / _exact(1.0, res.r_max) - 1.0))
     # P1 on a smooth graded mesh: error ~ cells^-2, so halving the cell size divides it by ~4
     for coarse, fine in zip(errs, errs[1:]):
@@ -30,7 +32,11 @@ def test_axisymmetric_newtonian_converges_at_second_order():
 
 @pytest.mark.parametrize("n", [1 / 3 + 0.01, 0.5, 1.5, 3.0])
 def test_axisymmetric_power_law_newton_matches_closed_form(n):
-    res = solve(ReynoldsParams(radius=R, gap=H0, velocity=V, viscosity=ETA, power_law_index=n, cells=200, domain=30))
+    res = solve(
+        ReynoldsParams(
+            radius=R, gap=H0, velocity=V, viscosity=ETA, power_law_index=n, cells=200, domain=30
+        )
+    )
     # 200 cells: the measured O(cells^-2) discretisation error is 5e-4 ... 7e-4 for all n
     assert res.force == pytest.approx(_exact(n, res.r_max), rel=2e-3)
     assert 1 <= res.nit <= 40  # Newton from the optimally scaled Newtonian start
@@ -42,7 +48,15 @@ def test_xy_grid_converges_to_closed_form():
     f = {}
     for cells in (16, 32):
         res = solve(
-            ReynoldsParams(radius=R, gap=H0, velocity=V, viscosity=ETA, power_law_index=n, cells=cells, domain=30),
+            ReynoldsParams(
+                radius=R,
+                gap=H0,
+                velocity=V,
+                viscosity=ETA,
+                power_law_index=n,
+                cells=cells,
+                domain=30,
+            ),
             method="xy",
         )
         f[cells] = res.force
@@ -59,7 +73,9 @@ def test_xy_shear_thinning_between_circle_bounds():
     # force lies between the exact forces for the inscribed (L) and circumscribed (sqrt 2 L) disks.
     n = 0.5
     res = solve(
-        ReynoldsParams(radius=R, gap=H0, velocity=V, viscosity=ETA, power_law_index=n, cells=32, domain=30),
+        ReynoldsParams(
+            radius=R, gap=H0, velocity=V, viscosity=ETA, power_law_index=n, cells=32, domain=30
+        ),
         method="xy",
     )
     L = res.half_width
@@ -95,8 +111,15 @@ def test_sliding_reynolds_recovers_gcb_log_coefficient_not_couette():
     drag = {}
     for eps in (1e-3, 1e-4):
         h = eps * R
-        p = ReynoldsParams(radius=R, gap=h, velocity=0.0, viscosity=ETA, sliding_velocity=U, cells=32,
-                           domain=L / math.sqrt(2 * R * h))
+        p = ReynoldsParams(
+            radius=R,
+            gap=h,
+            velocity=0.0,
+            viscosity=ETA,
+            sliding_velocity=U,
+            cells=32,
+            domain=L / math.sqrt(2 * R * h),
+        )
         res = solve(p, method="xy")
         drag[eps] = res.drag
         assert abs(res.force) < 1e-12 * res.drag / eps  # antisymmetric pressure: no lift
@@ -124,9 +147,12 @@ def test_quadrature_solve_is_exact_and_agrees_with_the_finite_elements():
     assert quadrature_force_many(R, ETA, [h, 2 * h], 1e-3, nodes=32, domain=dom) == pytest.approx(
         [exact, exact / 2], rel=1e-12)
     # power law against the closed form on the same disc (incomplete beta)
-    q = ReynoldsParams(radius=R, gap=h, velocity=1e-3, viscosity=ETA, power_law_index=0.5, cells=64, domain=100.0)
-    assert quadrature_force(q) == pytest.approx(ref.power_law_squeeze_force(R, ETA, 0.5, h, 1e-3, r_max=100 * q.contact_radius),
-                                                rel=1e-9)  # measured 8e-12
+    q = ReynoldsParams(
+        radius=R, gap=h, velocity=1e-3, viscosity=ETA, power_law_index=0.5, cells=64, domain=100.0
+    )
+    assert quadrature_force(q) == pytest.approx(
+        ref.power_law_squeeze_force(R, ETA, 0.5, h, 1e-3, r_max=100 * q.contact_radius), rel=1e-9
+    )  # measured 8e-12
     # exact sphere gap (no closed form): the finite-element solve converges to it at second
     # order, measured -2.2e-4 (200 cells), -1.4e-5 (800)
     s = dict(radius=R, gap=1e-5, velocity=1e-3, viscosity=ETA, domain=7.0, gap_shape="sphere")

@@ -25,10 +25,24 @@ def test_xy_power_law_shear_thinning_converges():
     n = 0.7
     forces = []
     for cells in (32, 64):
-        res = solve(ReynoldsParams(radius=R, gap=1e-6, velocity=V, viscosity=ETA, power_law_index=n, cells=cells, domain=30), method="xy")
+        res = solve(
+            ReynoldsParams(
+                radius=R,
+                gap=1e-6,
+                velocity=V,
+                viscosity=ETA,
+                power_law_index=n,
+                cells=cells,
+                domain=30,
+            ),
+            method="xy",
+        )
         forces.append(res.force)
     L = res.half_width
-    lo, hi = ref.power_law_squeeze_force(R, ETA, n, 1e-6, V, r_max=L), ref.power_law_squeeze_force(R, ETA, n, 1e-6, V, r_max=np.sqrt(2) * L)
+    lo, hi = (
+        ref.power_law_squeeze_force(R, ETA, n, 1e-6, V, r_max=L),
+        ref.power_law_squeeze_force(R, ETA, n, 1e-6, V, r_max=np.sqrt(2) * L),
+    )
     richardson = forces[1] + (forces[1] - forces[0]) / 3
     assert lo < richardson < hi
 
@@ -38,6 +52,9 @@ def test_polishing_larger_map_smoothing_and_mass_balance():
     # construction of the load balance, see polishing.py.)
     for p in (1e5, 1e6):
         # 6 s: at 1e6 Pa the surface is already polished to ~Sq/10 and sub-steps stay few
-        res = polish(PolishParams(grid_points=64, steps=20, duration=6.0, pressure=p), rng=np.random.default_rng(11))
+        res = polish(
+            PolishParams(grid_points=64, steps=20, duration=6.0, pressure=p),
+            rng=np.random.default_rng(11),
+        )
         assert res.sq[-1] < res.sq[0]
         assert res.mass_balance_error < 1e-9

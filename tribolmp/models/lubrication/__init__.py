@@ -1,5 +1,7 @@
-"""Lubrication: reduced squeeze/sliding forces, the Eq. 13 pair law, a Reynolds reference,
-film dynamics, mixed lubrication and lubricated polishing (SI units).
+"""Lubrication models (SI units).
+
+Reduced squeeze/sliding forces, the Eq. 13 pair law, a Reynolds reference,
+film dynamics, mixed lubrication and lubricated polishing.
 
 Modules: :mod:`.reference` (exact/asymptotic forces), :mod:`.reduced` (named
 reduced models, ``Params``, ``solve``, ``squeeze_damper_force``,

@@ -89,7 +89,9 @@ class FilmParams:
     def __post_init__(self) -> None:
         validate_dataclass(self)
         if self.model == "cox-brenner" and self.gap0 / self.radius > 0.1:
-            raise ParameterError("gap0", f"<= 0.1 R = {0.1 * self.radius:g} m for model 'cox-brenner'", self.gap0)
+            raise ParameterError(
+                "gap0", f"<= 0.1 R = {0.1 * self.radius:g} m for model 'cox-brenner'", self.gap0
+            )
 
     @property
     def n(self) -> float:
@@ -131,7 +133,9 @@ def _primitive(p: FilmParams):
                 # h < e^-700 m: the corrections (h/R) ln(R/h) are < 1e-300, so Phi = alpha ln h
                 # exactly in float; ln h is returned, h itself underflows (stated by approach())
                 return y / alpha
-            return brentq(lambda u: float(phi(math.exp(u))) - y, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=400)
+            return brentq(
+                lambda u: float(phi(math.exp(u))) - y, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=400
+            )
 
         def inv(y):
             return math.exp(inv_log(y))
@@ -255,14 +259,19 @@ def approach(params: FilmParams, *, scheme: str = "log", rng=None) -> Result:
     )
     if not np.all(np.isfinite(h)) or res.min_gap < 0:
         res.status = -1
-        res.message = f"gap went negative ({res.min_gap:.3g} m): the step is too large for scheme '{scheme}'"
+        res.message = (
+            f"gap went negative ({res.min_gap:.3g} m): the step is too large for scheme '{scheme}'"
+        )
     else:
         res.message = "film collapsed (contact)" if res.collapsed else "film intact"
         under = (h == 0.0) & ~res.collapsed
         if under.any():
             res.underflow_time = float(t[np.argmax(under)])
-            res.message += (f"; the gap fell below the smallest float (1e-308 m) at t = {res.underflow_time:.3g} s: "
-                            "h is reported as 0, log_h carries ln h")
+            res.message += (
+                "; the gap fell below the smallest float "
+                f"(1e-308 m) at t = {res.underflow_time:.3g} s: "
+                "h is reported as 0, log_h carries ln h"
+            )
     return res
 
 
@@ -323,7 +332,9 @@ class MixedParams:
     def __post_init__(self) -> None:
         validate_dataclass(self)
         if not (self.nominal_film or self.summit_dampers):
-            raise ParameterError("nominal_film", "True when summit_dampers is False (no film at all)", False)
+            raise ParameterError(
+                "nominal_film", "True when summit_dampers is False (no film at all)", False
+            )
 
 
 def summits(x, g):
@@ -341,7 +352,9 @@ def summits(x, g):
     return idx[ok], 2.0 / curv[ok]
 
 
-def nominal_film_table(g, params: MixedParams, length: float, d_lo: float, d_hi: float, points: int = 801):
+def nominal_film_table(
+    g, params: MixedParams, length: float, d_lo: float, d_hi: float, points: int = 801
+):
     """Nominal film resistance c(d) (N s/m) and its primitive on a grid of indentations.
 
     The grid is uniform in ln u (u = mean(g) - d, the flat-to-mean-plane
@@ -358,8 +371,15 @@ def nominal_film_table(g, params: MixedParams, length: float, d_lo: float, d_hi:
     u = np.geomspace(gbar - d_lo, gbar - d_hi, points)
     d = gbar - u
     gaps = np.clip(np.asarray(g)[None, :] - d[:, None], 0.0, None)
-    c, _, closed = film_resistance(gaps, params.viscosity, params.apparent_shape, length, method=params.flow_factor,
-                                   separation=u, sigma=float(np.std(g)))
+    c, _, closed = film_resistance(
+        gaps,
+        params.viscosity,
+        params.apparent_shape,
+        length,
+        method=params.flow_factor,
+        separation=u,
+        sigma=float(np.std(g)),
+    )
     cu = c * u
     # dd = -du = -u d(ln u): Phi increases with d
     dphi = 0.5 * (cu[1:] + cu[:-1]) * -np.diff(np.log(u))
@@ -413,14 +433,18 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None, times=None) 
 
     from ..contact.mdr import normal_force as mdr_normal_force
 
-    nf, source = (normal_force, "user") if normal_force is not None else (mdr_normal_force, "contact.mdr")
+    nf, source = (
+        (normal_force, "user") if normal_force is not None else (mdr_normal_force, "contact.mdr")
+    )
     x, g = np.asarray(x, float), np.asarray(g, float)
     p = params
     dx = float(x[1] - x[0])
     length = p.apparent_length if p.apparent_length is not None else g.size * dx
     idx, Rj = summits(x, g)
     if p.summit_dampers and idx.size == 0:
-        raise ParameterError("g", "a profile with at least one summit (local minimum of the gap)", "none")
+        raise ParameterError(
+            "g", "a profile with at least one summit (local minimum of the gap)", "none"
+        )
     alpha = 6.0 * math.pi * p.viscosity * Rj**2 if p.summit_dampers else np.zeros(0)
     gj = g[idx] if p.summit_dampers else np.zeros(0)
     hc = p.film_cutoff
@@ -436,7 +460,11 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None, times=None) 
         hi *= 2.0
         if hi > 1e3 * (float(g.max()) + p.gap0):
             raise BlowUpError(f"load {p.normal_force:g} N exceeds what the profile can carry")
-    d_dry = brentq(dry, -1e-300 if dry(0.0) < 0 else -p.gap0, hi, xtol=1e-18, rtol=1e-14) if p.normal_force > 0 else 0.0
+    d_dry = (
+        brentq(dry, -1e-300 if dry(0.0) < 0 else -p.gap0, hi, xtol=1e-18, rtol=1e-14)
+        if p.normal_force > 0
+        else 0.0
+    )
     d0 = -p.gap0
     # the film seals where half the rigid gap is closed (Bruggeman; the median of g)
     d_seal = float(np.median(g)) if p.flow_factor == "bruggeman" and p.nominal_film else math.inf
@@ -458,7 +486,9 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None, times=None) 
     else:
         t = np.asarray(times, dtype=float)
         if t.ndim != 1 or t.size < 2 or t[0] != 0.0 or np.any(np.diff(t) <= 0):
-            raise ParameterError("times", "an increasing 1D array of times starting at 0 s", getattr(t, "shape", t))
+            raise ParameterError(
+                "times", "an increasing 1D array of times starting at 0 s", getattr(t, "shape", t)
+            )
     d = np.empty_like(t)
     Fs = np.zeros_like(t)
     d[0] = d0
@@ -505,12 +535,30 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None, times=None) 
         apparent_length=float(length),
         nit=int(t.size - 1),
         normal_force_source=source,
-        units={"t": "s", "d": "m", "separation": "m", "spring_force": "N", "fluid_force": "N",
-               "film_resistance": "N s/m", "nominal_resistance": "N s/m", "summit_resistance": "N s/m",
-               "d_dry": "m", "contact_time": "s", "min_film": "m", "apparent_length": "m"},
-        message=(f"nominal film ({p.flow_factor}, {p.apparent_shape} {length:.3g} m)"
-                 + (f" + {idx.size} summit dampers" if p.summit_dampers else "") + f", springs from {source}"
-                 + ("; the film sealed (closed fraction 1/2) before the springs carried the load" if sealed else "")),
+        units={
+            "t": "s",
+            "d": "m",
+            "separation": "m",
+            "spring_force": "N",
+            "fluid_force": "N",
+            "film_resistance": "N s/m",
+            "nominal_resistance": "N s/m",
+            "summit_resistance": "N s/m",
+            "d_dry": "m",
+            "contact_time": "s",
+            "min_film": "m",
+            "apparent_length": "m",
+        },
+        message=(
+            f"nominal film ({p.flow_factor}, {p.apparent_shape} {length:.3g} m)"
+            + (f" + {idx.size} summit dampers" if p.summit_dampers else "")
+            + f", springs from {source}"
+            + (
+                "; the film sealed (closed fraction 1/2) before the springs carried the load"
+                if sealed
+                else ""
+            )
+        ),
     )
     if sealed:
         res.status = 1

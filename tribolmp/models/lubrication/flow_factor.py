@@ -1,4 +1,6 @@
-"""Squeeze film of a rough apparent contact: flow factors and a resolved 2D rough Reynolds solve (SI).
+"""Squeeze film of a rough apparent contact.
+
+Flow factors and a resolved 2D rough Reynolds solve (SI).
 
 A rigid nominal flat approaches a rough surface of apparent area A through a
 Newtonian film.  The local gap is ``h(x, y) = max(u - z(x, y), 0)`` (``u``:
@@ -76,11 +78,16 @@ def square_poisson_integral(terms: int = 2000) -> float:
     """``int P dA / L^4`` for the unit square by its double Fourier series (dimensionless)."""
     m = np.arange(1, 2 * terms, 2, dtype=float)
     m2 = m * m
-    return float(64.0 / math.pi**6 * np.sum(1.0 / (m2[:, None] * m2[None, :] * (m2[:, None] + m2[None, :]))))
+    return float(
+        64.0 / math.pi**6 * np.sum(1.0 / (m2[:, None] * m2[None, :] * (m2[:, None] + m2[None, :])))
+    )
 
 
 def shape_integral(shape: str, length: float) -> float:
-    """``I_A = int P dA`` (m^4) of the apparent contact: ``"square"`` of side L or ``"disc"`` of diameter L."""
+    """``I_A = int P dA`` (m^4) of the apparent contact.
+
+    ``"square"`` of side L or ``"disc"`` of diameter L.
+    """
     if shape == "square":
         return SQUARE_POISSON * length**4
     if shape == "disc":
@@ -125,7 +132,10 @@ def bruggeman_conductance(gaps, axis: int = -1) -> np.ndarray:
 
 
 def patir_cheng_flow_factor(separation, sigma) -> np.ndarray:
-    """Patir-Cheng pressure flow factor ``1 - 0.9 exp(-0.56 u/sigma)`` (isotropic, u/sigma > 0.5)."""
+    """Patir-Cheng pressure flow factor ``1 - 0.9 exp(-0.56 u/sigma)``.
+
+    Isotropic, for u/sigma > 0.5.
+    """
     return 1.0 - 0.9 * np.exp(-0.56 * np.asarray(separation, dtype=float) / float(sigma))
 
 
@@ -167,13 +177,17 @@ def film_resistance(gaps, viscosity: float, shape: str, length: float, *, method
         k = patir_cheng_flow_factor(u, s) * u**3
     else:
         raise ParameterError("flow_factor", f"one of {list(CONDUCTANCES)}", method)
-    I = shape_integral(shape, length)
+    i_area = shape_integral(shape, length)  # I_A (m^4)
     with np.errstate(divide="ignore"):
-        c = np.where(k > 0, 12.0 * viscosity * (1.0 - closed) * I / np.where(k > 0, k, 1.0), np.inf)
+        c = np.where(
+            k > 0, 12.0 * viscosity * (1.0 - closed) * i_area / np.where(k > 0, k, 1.0), np.inf
+        )
     return c, k, closed
 
 
-def rough_reynolds_squeeze(gap, pixel_size: float, viscosity: float, velocity: float = 1.0) -> Result:
+def rough_reynolds_squeeze(
+    gap, pixel_size: float, viscosity: float, velocity: float = 1.0
+) -> Result:
     """Finite-volume solution of the local squeeze Reynolds equation on a resolved rough gap.
 
     ``-div(h^3/(12 eta) grad p) = V`` on the open cells of an ``n x m`` grid
@@ -238,9 +252,16 @@ def rough_reynolds_squeeze(gap, pixel_size: float, viscosity: float, velocity: f
             e_act = active[edge]
             np.add.at(diag, idx[edge][e_act], 2.0 * k[edge][e_act])
         nact = diag.size
-        A = sparse.csr_matrix((np.concatenate(vals + [diag]), (np.concatenate(rows + [np.arange(nact)]),
-                                                                np.concatenate(cols + [np.arange(nact)]))),
-                              shape=(nact, nact))
+        A = sparse.csr_matrix(
+            (
+                np.concatenate(vals + [diag]),
+                (
+                    np.concatenate(rows + [np.arange(nact)]),
+                    np.concatenate(cols + [np.arange(nact)]),
+                ),
+            ),
+            shape=(nact, nact),
+        )
         rhs = np.full(nact, velocity * pixel_size**2)
         p_act = spsolve(A.tocsc(), rhs) if nact else np.zeros(0)
         p = np.full(h.shape, np.nan)

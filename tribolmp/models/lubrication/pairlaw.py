@@ -160,7 +160,11 @@ def sphere_plane_rings(radius, gap, *, refine=0.25, plane_extent=30.0, max_rings
             s = min(s + ds, s_end)
             edges.append(s)
             if len(edges) > max_rings:
-                raise ParameterError("refine", f"a mesh of <= {max_rings} rings (h/R = {h0 / R:.3g} too small for refine)", refine)
+                raise ParameterError(
+                    "refine",
+                    f"a mesh of <= {max_rings} rings (h/R = {h0 / R:.3g} too small for refine)",
+                    refine,
+                )
         return np.asarray(edges)
 
     # sphere: arc length s = R theta from the lowest point; height z = h0 + R (1 - cos theta)
@@ -189,7 +193,7 @@ def sphere_plane_rings(radius, gap, *, refine=0.25, plane_extent=30.0, max_rings
 
 
 def ring_squeeze_force(sphere: Rings, plane: Rings, viscosity, radius, velocity, *, chunk=1024):
-    """Normal pair-law force (N) between coaxial ring meshes, exact in azimuth.
+    """Return the normal pair-law force (N) between coaxial ring meshes, exact in azimuth.
 
     The sphere moves towards the plane at ``velocity`` (m/s); each sphere
     element at height z sees a plane element at horizontal distance rho with
@@ -252,7 +256,10 @@ def sphere_plane_pair_force(
         pairs = sphere.r.size * plane.r.size
         if pairs > max_pairs:
             raise ParameterError(
-                "gap", f"h/R large enough for <= {max_pairs:.0e} ring pairs at refine={refine:g} (needs {pairs:.1e})", gap
+                "gap",
+                f"h/R large enough for <= {max_pairs:.0e} ring "
+                f"pairs at refine={refine:g} (needs {pairs:.1e})",
+                gap,
             )
         check_element_size(sphere.width, sphere.gap, what="sphere ring width")
         check_element_size(plane.width, plane.gap, what="plane ring width")

@@ -55,7 +55,14 @@ from ...scene.fields import param, validate_dataclass
 from ..base import Result, timed
 from .reference import damper_coefficient
 
-__all__ = ["PolishParams", "polish", "polish_resolved", "self_affine_surface", "squeeze_out_time", "params_from_scene"]
+__all__ = [
+    "PolishParams",
+    "polish",
+    "polish_resolved",
+    "self_affine_surface",
+    "squeeze_out_time",
+    "params_from_scene",
+]
 
 
 @dataclass(frozen=True)
@@ -127,7 +134,9 @@ class PolishParams:
     def __post_init__(self) -> None:
         validate_dataclass(self)
         if self.film_cutoff >= self.film_thickness:
-            raise ParameterError("film_cutoff", f"< film_thickness ({self.film_thickness:g} m)", self.film_cutoff)
+            raise ParameterError(
+                "film_cutoff", f"< film_thickness ({self.film_thickness:g} m)", self.film_cutoff
+            )
 
     @property
     def area(self) -> float:
@@ -137,7 +146,9 @@ class PolishParams:
     @property
     def n_particles(self) -> int:
         """Particles per step, phi A / (pi a^2), at least 1."""
-        return max(1, int(round(self.particle_fraction * self.area / (math.pi * self.particle_radius**2))))
+        return max(
+            1, int(round(self.particle_fraction * self.area / (math.pi * self.particle_radius**2)))
+        )
 
 
 def self_affine_surface(n, dx, rms, hurst, rolloff, rng) -> np.ndarray:
@@ -159,7 +170,9 @@ def self_affine_surface(n, dx, rms, hurst, rolloff, rng) -> np.ndarray:
 
 
 def squeeze_out_time(radius, viscosity, load, film, cutoff):
-    """Time (s) for a particle under ``load`` (N) to squeeze the film from ``film`` to ``cutoff`` (m).
+    """Time (s) for a particle to squeeze the film from ``film`` to ``cutoff``.
+
+    The particle is under ``load`` (N); film and cutoff thicknesses in m.
 
     Exact for the integrated pair law F = alpha V / (h (1 + h/2a)):
     t = alpha ln[film (cutoff + 2a) / (cutoff (film + 2a))] / F with alpha = 6 pi eta a^2.
@@ -167,7 +180,11 @@ def squeeze_out_time(radius, viscosity, load, film, cutoff):
     alpha = damper_coefficient(radius, viscosity)  # 6 pi eta a^2, the pair-law prefactor
     two_a = 2.0 * radius
     with np.errstate(divide="ignore"):
-        return alpha * math.log(film * (cutoff + two_a) / (cutoff * (film + two_a))) / np.asarray(load, dtype=float)
+        return (
+            alpha
+            * math.log(film * (cutoff + two_a) / (cutoff * (film + two_a)))
+            / np.asarray(load, dtype=float)
+        )
 
 
 def _pad_height(z_lines, a, E_star, load_per_line_sum):
@@ -188,7 +205,11 @@ def _pad_height(z_lines, a, E_star, load_per_line_sum):
     # a single loaded pixel carrying n * load bounds the pad's lowest position
     delta1 = (n * load_per_line_sum / c) ** (2.0 / 3.0)
     Z = brentq(
-        lambda Z: float(forces(Z).sum()) / n - load_per_line_sum, top - 1.001 * delta1, top, xtol=1e-18, rtol=1e-15
+        lambda Z: float(forces(Z).sum()) / n - load_per_line_sum,
+        top - 1.001 * delta1,
+        top,
+        xtol=1e-18,
+        rtol=1e-15,
     )
     return Z, forces(Z)
 
@@ -235,7 +256,9 @@ def polish(params: PolishParams, *, rng, h0=None, snapshots: int = 5) -> Result:
     sq[0], sa[0] = h.std(), np.mean(np.abs(h - h.mean()))
     nsub = 0
     vol[0] = h.sum() * dx * dx
-    snap_at = set(np.unique(np.linspace(0, p.steps, max(2, snapshots)).round().astype(int)).tolist())
+    snap_at = set(
+        np.unique(np.linspace(0, p.steps, max(2, snapshots)).round().astype(int)).tolist()
+    )
     snaps, snap_t = [h.copy()], [0.0]
     with timed(res):
         for k in range(1, p.steps + 1):
@@ -248,14 +271,18 @@ def polish(params: PolishParams, *, rng, h0=None, snapshots: int = 5) -> Result:
                 j0 = np.floor(fy).astype(int) % n
                 j1 = (j0 + 1) % n
                 ty = (fy - np.floor(fy))[:, None]
-                z_lines = (1.0 - ty) * h[:, j0].T + ty * h[:, j1].T  # (N_p, n) heights along each line
+                z_lines = (1.0 - ty) * h[:, j0].T + ty * h[
+                    :, j1
+                ].T  # (N_p, n) heights along each line
                 Z, F = _pad_height(z_lines, a, p.E_star, load)
                 load_err[k] = max(load_err[k], abs(F.sum() / n / load - 1.0))
                 f = np.zeros_like(F)
                 loaded = F > 0
                 ts = squeeze_out_time(a, p.viscosity, F[loaded], p.film_thickness, p.film_cutoff)
                 f[loaded] = np.clip(1.0 - ts / t_r, 0.0, 1.0)
-                rate = p.archard_coefficient * F * p.velocity * f / n  # Archard volume rate per (line, pixel)
+                rate = (
+                    p.archard_coefficient * F * p.velocity * f / n
+                )  # Archard volume rate per (line, pixel)
                 cut = np.zeros_like(h)
                 np.add.at(cut, (slice(None), j0), ((1.0 - ty) * rate).T / (dx * dx))
                 np.add.at(cut, (slice(None), j1), (ty * rate).T / (dx * dx))
@@ -280,7 +307,11 @@ def polish(params: PolishParams, *, rng, h0=None, snapshots: int = 5) -> Result:
                 snaps.append(h.copy())
                 snap_t.append(float(t[k]))
     change = vol[0] - vol
-    mb = float(abs(change[-1] - removed[-1]) / removed[-1]) if removed[-1] > 0 else float(abs(change[-1]))
+    mb = (
+        float(abs(change[-1] - removed[-1]) / removed[-1])
+        if removed[-1] > 0
+        else float(abs(change[-1]))
+    )
     res.update(
         t=t,
         sq=sq,
@@ -299,16 +330,28 @@ def polish(params: PolishParams, *, rng, h0=None, snapshots: int = 5) -> Result:
         n_particles=p.n_particles,
         nit=nsub,
         units={
-            "t": "s", "sq": "m", "sa": "m", "removed_volume": "m^3", "volume_change": "m^3",
-            "removal_rate": "m/s", "preston_rate": "m/s", "h": "m", "pixel_size": "m", "snapshot_t": "s",
+            "t": "s",
+            "sq": "m",
+            "sa": "m",
+            "removed_volume": "m^3",
+            "volume_change": "m^3",
+            "removal_rate": "m/s",
+            "preston_rate": "m/s",
+            "h": "m",
+            "pixel_size": "m",
+            "snapshot_t": "s",
         },
-        message=f"{p.steps} output steps ({nsub} sub-steps), {p.n_particles} particles per sub-step",
+        message=f"{p.steps} output steps ({nsub} sub-steps), "
+                f"{p.n_particles} particles per sub-step",
     )
     return res
 
 
 def _pad_heights_many(z, a, E_star, load):
-    """Pad heights Z_m (m) with sum_i c (z_mi + 2a - Z_m)_+^1.5 = load for each row m of ``z`` (bisection)."""
+    """Pad heights Z_m (m) of every row m of ``z``, by bisection.
+
+    Each solves sum_i c (z_mi + 2a - Z_m)_+^1.5 = load.
+    """
     c = 4.0 / 3.0 * E_star * math.sqrt(a)
     top = z.max(axis=1) + 2.0 * a
     # one particle carrying the whole load bounds the pad's lowest position
@@ -381,7 +424,9 @@ def polish_resolved(params: PolishParams, *, rng, h0=None, positions: int | None
                 loaded = F > 0
                 ts = squeeze_out_time(a, p.viscosity, F[loaded], p.film_thickness, p.film_cutoff)
                 f[loaded] = np.clip(1.0 - ts / t_r, 0.0, 1.0)
-                rate = p.archard_coefficient * F * p.velocity * f / M  # volume rate per (move, particle)
+                rate = (
+                    p.archard_coefficient * F * p.velocity * f / M
+                )  # volume rate per (move, particle)
                 cut = np.zeros_like(h)
                 for wgt, ii, jj in (((1 - tx) * (1 - ty), i0, J0), (tx * (1 - ty), i1, J0),
                                     ((1 - tx) * ty, i0, J1), (tx * ty, i1, J1)):
@@ -401,18 +446,33 @@ def polish_resolved(params: PolishParams, *, rng, h0=None, positions: int | None
             fc[k] = fsum / wsum
             sq[k] = h.std()
     res.update(
-        t=t, sq=sq, removed_volume=removed, h=h,
+        t=t,
+        sq=sq,
+        removed_volume=removed,
+        h=h,
         removal_rate=float(removed[-1] / (p.area * p.duration)),
         preston_rate=p.archard_coefficient * p.pressure * p.velocity,
-        contact_fraction=float(np.mean(fc[1:])), nit=nsub, positions=M,
-        units={"t": "s", "sq": "m", "removed_volume": "m^3", "removal_rate": "m/s", "preston_rate": "m/s", "h": "m"},
-        message=f"{p.steps} output steps ({nsub} sub-steps), {Np} particles x {M} positions per sub-step",
+        contact_fraction=float(np.mean(fc[1:])),
+        nit=nsub,
+        positions=M,
+        units={
+            "t": "s",
+            "sq": "m",
+            "removed_volume": "m^3",
+            "removal_rate": "m/s",
+            "preston_rate": "m/s",
+            "h": "m",
+        },
+        message=f"{p.steps} output steps ({nsub} sub-steps), "
+                f"{Np} particles x {M} positions per sub-step",
     )
     return res
 
 
 def params_from_scene(scene, **overrides) -> PolishParams:
-    """Build :class:`PolishParams` from ``[polishing]``, ``[lubricant]``, ``[roughness]``, ``[geometry]``.
+    """Build :class:`PolishParams` from the scene.
+
+    Sections read: ``[polishing]``, ``[lubricant]``, ``[roughness]``, ``[geometry]``.
 
     Missing optional sections fall back to the :class:`PolishParams` defaults;
     keyword ``overrides`` replace single fields (e.g. ``grid_points`` for a quick run).
@@ -429,7 +489,9 @@ def params_from_scene(scene, **overrides) -> PolishParams:
             duration=pol.duration,
         )
     if scene.lubricant is not None:
-        kw.update(viscosity=scene.lubricant.viscosity, film_thickness=scene.lubricant.film_thickness)
+        kw.update(
+            viscosity=scene.lubricant.viscosity, film_thickness=scene.lubricant.film_thickness
+        )
     rough = scene.roughness
     if rough is not None:
         kw.update(

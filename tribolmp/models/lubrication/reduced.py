@@ -108,7 +108,10 @@ class Params:
 def _newtonian_only(p: Params, model: str) -> None:
     if not p.newtonian:
         raise ParameterError(
-            "model", f"'damper', 'power-law' or 'reynolds' for a power-law fluid (n = {p.power_law_index:g})", model
+            "model",
+            "'damper', 'power-law' or 'reynolds' for a "
+            f"power-law fluid (n = {p.power_law_index:g})",
+            model,
         )
 
 
@@ -121,14 +124,18 @@ def _damper(p: Params) -> dict:
 
 @SQUEEZE.register("power-law")
 def _power_law(p: Params) -> dict:
-    return {"force": ref.power_law_squeeze_force(p.radius, p.K, p.power_law_index, p.gap, p.velocity)}
+    return {
+        "force": ref.power_law_squeeze_force(p.radius, p.K, p.power_law_index, p.gap, p.velocity)
+    }
 
 
 @SQUEEZE.register("cox-brenner")
 def _cox_brenner(p: Params) -> dict:
     _newtonian_only(p, "cox-brenner")
     if p.gap / p.radius > 0.1:
-        raise ParameterError("gap", f"gap/radius <= 0.1 for model 'cox-brenner' (use 'brenner')", p.gap / p.radius)
+        raise ParameterError(
+            "gap", "gap/radius <= 0.1 for model 'cox-brenner' (use 'brenner')", p.gap / p.radius
+        )
     return {"force": float(ref.cox_brenner_force(p.radius, p.viscosity, p.gap, p.velocity))}
 
 
@@ -156,8 +163,15 @@ def _reynolds(p: Params) -> dict:
     # Share of the infinite-domain force lost outside r_max, from the exact
     # paraboloid solution (zero for an infinite domain; large for n -> 1/3).
     full = ref.power_law_squeeze_force(p.radius, p.K, p.power_law_index, p.gap, 1.0)
-    part = ref.power_law_squeeze_force(p.radius, p.K, p.power_law_index, p.gap, 1.0, r_max=res.r_max)
-    return {"force": res.force, "nit": res.nit, "r_max": res.r_max, "truncation_error": 1.0 - part / full}
+    part = ref.power_law_squeeze_force(
+        p.radius, p.K, p.power_law_index, p.gap, 1.0, r_max=res.r_max
+    )
+    return {
+        "force": res.force,
+        "nit": res.nit,
+        "r_max": res.r_max,
+        "truncation_error": 1.0 - part / full,
+    }
 
 
 @SLIDING.register("gcb")
@@ -169,13 +183,19 @@ def _gcb(p: Params) -> dict:
 @SLIDING.register("couette")
 def _couette(p: Params) -> dict:
     _newtonian_only(p, "couette")
-    return {"force": float(ref.couette_sliding_force(p.radius, p.viscosity, p.gap, p.sliding_velocity, p.length))}
+    return {
+        "force": float(
+            ref.couette_sliding_force(p.radius, p.viscosity, p.gap, p.sliding_velocity, p.length)
+        )
+    }
 
 
 @SLIDING.register("faxen")
 def _faxen(p: Params) -> dict:
     _newtonian_only(p, "faxen")
-    return {"force": float(ref.faxen_sliding_force(p.radius, p.viscosity, p.gap, p.sliding_velocity))}
+    return {
+        "force": float(ref.faxen_sliding_force(p.radius, p.viscosity, p.gap, p.sliding_velocity))
+    }
 
 
 _UNITS = {"force": "N", "time_s": "s", "r_max": "m", "gap_over_radius": "1"}
@@ -225,7 +245,7 @@ def sliding_force(params: Params, model: str = "gcb") -> Result:
 
 
 def solve(params: Params, *, method: str = "damper", rng=None) -> Result:
-    """Common model entry point: the squeeze force of ``method`` (see :func:`squeeze_force`)."""
+    """Return the squeeze force of ``method`` (common entry point, see :func:`squeeze_force`)."""
     return squeeze_force(params, method)
 
 
@@ -244,7 +264,12 @@ def squeeze_damper_force(radius: float, viscosity: float, gap: float, velocity: 
         Approach speed V = -dh/dt in m/s.
     """
     try:
-        ok = radius > 0 and viscosity > 0 and gap > 0 and math.isfinite(radius * viscosity * gap * velocity)
+        ok = (
+            radius > 0
+            and viscosity > 0
+            and gap > 0
+            and math.isfinite(radius * viscosity * gap * velocity)
+        )
     except TypeError:
         ok = False
     if not ok:  # slow path only to build the one-line message naming the field
@@ -269,7 +294,9 @@ def params_from_scene(scene, *, velocity: float | None = None) -> Params:
     """
     lub = scene.lubricant
     if lub is None:
-        raise ParameterError("[lubricant]", "a [lubricant] section for the lubrication model", "nothing")
+        raise ParameterError(
+            "[lubricant]", "a [lubricant] section for the lubrication model", "nothing"
+        )
     gap = lub.film_thickness
     return Params(
         radius=scene.geometry.radius,

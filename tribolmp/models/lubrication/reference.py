@@ -298,7 +298,9 @@ def power_law_squeeze_force(radius, consistency, index, gap, velocity, r_max=Non
     a, b = (n + 3.0) / 2.0, (3.0 * n - 1.0) / 2.0
     if r_max is None:
         if not n > 1.0 / 3.0:
-            raise ValueError(f"power-law index must exceed 1/3 for a finite squeeze force, got {n!r}")
+            raise ValueError(
+                f"power-law index must exceed 1/3 for a finite squeeze force, got {n!r}"
+            )
         beta = special.beta(a, b)
     else:
         T2 = r_max**2 / (2.0 * radius * gap)
@@ -308,9 +310,15 @@ def power_law_squeeze_force(radius, consistency, index, gap, velocity, r_max=Non
         else:  # the truncated integral is finite for any n; integrate it directly
             from scipy import integrate
 
-            beta = 2.0 * integrate.quad(
-                lambda t: t ** (n + 2.0) / (1.0 + t * t) ** (2.0 * n + 1.0), 0.0, math.sqrt(T2), limit=200
-            )[0]
+            beta = (
+                2.0
+                * integrate.quad(
+                    lambda t: t ** (n + 2.0) / (1.0 + t * t) ** (2.0 * n + 1.0),
+                    0.0,
+                    math.sqrt(T2),
+                    limit=200,
+                )[0]
+            )
     V = float(velocity)
     C = 2.0 ** (n + 1.0) * consistency * ((2.0 * n + 1.0) / (2.0 * n)) ** n * abs(V) ** n
     F = 0.5 * math.pi * C * (2.0 * radius) ** a * gap ** ((1.0 - 3.0 * n) / 2.0) * beta

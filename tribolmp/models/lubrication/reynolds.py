@@ -44,7 +44,14 @@ from ...errors import ConvergenceError, ParameterError
 from ...scene.fields import param, validate_dataclass
 from ..base import MethodRegistry, Result, timed
 
-__all__ = ["ReynoldsParams", "REYNOLDS", "solve", "graded_nodes", "quadrature_force", "quadrature_force_many"]
+__all__ = [
+    "ReynoldsParams",
+    "REYNOLDS",
+    "solve",
+    "graded_nodes",
+    "quadrature_force",
+    "quadrature_force_many",
+]
 
 REYNOLDS = MethodRegistry("reynolds")
 
@@ -99,11 +106,16 @@ class ReynoldsParams:
     def __post_init__(self) -> None:
         validate_dataclass(self)
         if self.sliding_velocity != 0.0 and self.power_law_index != 1.0:
-            raise ParameterError("sliding_velocity", "0 for a power-law fluid (sliding is Newtonian only)", self.sliding_velocity)
+            raise ParameterError(
+                "sliding_velocity",
+                "0 for a power-law fluid (sliding is Newtonian only)",
+                self.sliding_velocity,
+            )
         if self.gap_shape == "sphere" and self.domain * self.contact_radius >= self.radius:
             raise ParameterError(
                 "domain",
-                f"an outer radius < R for gap_shape='sphere' (domain < {self.radius / self.contact_radius:g})",
+                "an outer radius < R for gap_shape='sphere' "
+                f"(domain < {self.radius / self.contact_radius:g})",
                 self.domain,
             )
 
@@ -143,7 +155,13 @@ def _gap_dx(p: ReynoldsParams, x: np.ndarray, r: np.ndarray) -> np.ndarray:
 def _mobility(p: ReynoldsParams, h: np.ndarray) -> np.ndarray:
     """a(h) with slot flux Phi = a(h) G^(1/n) (m^(2+1/n) / (Pa^(1/n) s))."""
     n = p.power_law_index
-    return n / (2.0 * n + 1.0) * h ** ((2.0 * n + 1.0) / n) * 2.0 ** (-(n + 1.0) / n) * p.K ** (-1.0 / n)
+    return (
+        n
+        / (2.0 * n + 1.0)
+        * h ** ((2.0 * n + 1.0) / n)
+        * 2.0 ** (-(n + 1.0) / n)
+        * p.K ** (-1.0 / n)
+    )
 
 
 class _Energy:
@@ -209,7 +227,9 @@ def _newton(energy: _Energy, p0_full, tol, max_iter):
         dp = -spsolve(H, grad, permc_spec="MMD_AT_PLUS_A")  # symmetric ordering
         dec = float(-grad @ dp)
         if not math.isfinite(dec):
-            raise ConvergenceError("Reynolds Newton step is not finite (mesh too coarse or parameters extreme)")
+            raise ConvergenceError(
+                "Reynolds Newton step is not finite (mesh too coarse or parameters extreme)"
+            )
         # The decrement ~ 2 (E - E_min); below ~1e-14 |E| it is float round-off.
         if dec <= max(tol, 1e-14) * max(abs(E), 1e-300):
             return p, it, dec
@@ -224,7 +244,9 @@ def _newton(energy: _Energy, p0_full, tol, max_iter):
         if t < 1e-10:  # no more decrease possible at float precision: converged to round-off
             return p, it, dec
         p, E = trial, E_new
-    raise ConvergenceError(f"Reynolds Newton did not converge in {max_iter} iterations (decrement {dec:.3g})")
+    raise ConvergenceError(
+        f"Reynolds Newton did not converge in {max_iter} iterations (decrement {dec:.3g})"
+    )
 
 
 def _solve_energy(p: ReynoldsParams, conn, B, area_weights, coeff, S, n_nodes, free):
@@ -258,7 +280,9 @@ def _coefficients(p: ReynoldsParams, h: np.ndarray) -> dict[str, np.ndarray]:
 @REYNOLDS.register("axisymmetric")
 def _axisymmetric(p: ReynoldsParams) -> Result:
     if p.sliding_velocity != 0.0:
-        raise ParameterError("sliding_velocity", "0 for method 'axisymmetric' (use method 'xy')", p.sliding_velocity)
+        raise ParameterError(
+            "sliding_velocity", "0 for method 'axisymmetric' (use method 'xy')", p.sliding_velocity
+        )
     rc = p.contact_radius
     r = graded_nodes(p.cells, p.domain * rc, rc)
     ne = r.size - 1
@@ -277,10 +301,14 @@ def _axisymmetric(p: ReynoldsParams) -> Result:
     r0, r1 = r[:-1], r[1:]
     left = 2.0 * math.pi * p.velocity * dr * (2.0 * r0 + r1) / 6.0
     right = 2.0 * math.pi * p.velocity * dr * (r0 + 2.0 * r1) / 6.0
-    S = np.bincount(conn[:, 0], left, minlength=r.size) + np.bincount(conn[:, 1], right, minlength=r.size)
+    S = np.bincount(conn[:, 0], left, minlength=r.size) + np.bincount(
+        conn[:, 1], right, minlength=r.size
+    )
     free = np.arange(r.size - 1)  # p(r_max) = 0
     pr, nit = _solve_energy(p, conn, B, np.ones(ne), coeff, S, r.size, free)
-    force = float(np.sum(math.pi * dr * ((2.0 * r0 + r1) * pr[:-1] + (r0 + 2.0 * r1) * pr[1:]) / 3.0))
+    force = float(
+        np.sum(math.pi * dr * ((2.0 * r0 + r1) * pr[:-1] + (r0 + 2.0 * r1) * pr[1:]) / 3.0)
+    )
     return dict(
         force=force,
         r=r,
@@ -310,11 +338,17 @@ def _xy(p: ReynoldsParams) -> Result:
     conn = np.concatenate([t1, t2])
     px, py = X.ravel()[conn], Y.ravel()[conn]
     # P1 gradient operator of each triangle.
-    det = (px[:, 1] - px[:, 0]) * (py[:, 2] - py[:, 0]) - (px[:, 2] - px[:, 0]) * (py[:, 1] - py[:, 0])
+    det = (px[:, 1] - px[:, 0]) * (py[:, 2] - py[:, 0]) - (px[:, 2] - px[:, 0]) * (
+        py[:, 1] - py[:, 0]
+    )
     area = 0.5 * np.abs(det)
     B = np.empty((conn.shape[0], 2, 3))
-    B[:, 0, :] = np.stack([py[:, 1] - py[:, 2], py[:, 2] - py[:, 0], py[:, 0] - py[:, 1]], 1) / det[:, None]
-    B[:, 1, :] = np.stack([px[:, 2] - px[:, 1], px[:, 0] - px[:, 2], px[:, 1] - px[:, 0]], 1) / det[:, None]
+    B[:, 0, :] = (
+        np.stack([py[:, 1] - py[:, 2], py[:, 2] - py[:, 0], py[:, 0] - py[:, 1]], 1) / det[:, None]
+    )
+    B[:, 1, :] = (
+        np.stack([px[:, 2] - px[:, 1], px[:, 0] - px[:, 2], px[:, 1] - px[:, 0]], 1) / det[:, None]
+    )
     # 3-point (edge-midpoint) rule, exact for quadratics, for int a(h) dA.
     coeff = {"newton": np.zeros(conn.shape[0]), "power": np.zeros(conn.shape[0])}
     S = np.bincount(conn.ravel(), np.repeat(p.velocity * area / 3.0, 3), minlength=nx * nx)
@@ -330,7 +364,9 @@ def _xy(p: ReynoldsParams) -> Result:
         if U != 0.0:
             # Couette source (U/2) dh/dx; hat functions are 1/2 at the edge midpoints
             src = 0.5 * U * _gap_dx(p, mx, mr) * area / 3.0 * 0.5
-            S += np.bincount(conn[:, i], src, minlength=nx * nx) + np.bincount(conn[:, j], src, minlength=nx * nx)
+            S += np.bincount(conn[:, i], src, minlength=nx * nx) + np.bincount(
+                conn[:, j], src, minlength=nx * nx
+            )
     boundary = np.zeros((nx, nx), dtype=bool)
     boundary[[0, -1], :] = True
     boundary[:, [0, -1]] = True
@@ -343,7 +379,9 @@ def _xy(p: ReynoldsParams) -> Result:
         # plus the pressure on its tilted surface, after one integration by parts)
         for i, j, mx, mr in mids:
             pm = 0.5 * (pr[conn[:, i]] + pr[conn[:, j]])
-            drag += float(np.sum(area / 3.0 * (p.viscosity * U / _gap(p, mr) + 0.5 * pm * _gap_dx(p, mx, mr))))
+            drag += float(
+                np.sum(area / 3.0 * (p.viscosity * U / _gap(p, mr) + 0.5 * pm * _gap_dx(p, mx, mr)))
+            )
     return dict(
         force=force,
         x=x,
@@ -362,7 +400,9 @@ def _gauss_legendre(n: int):
 
 
 def quadrature_force(p: ReynoldsParams, nodes: int | None = None):
-    """Axisymmetric Reynolds squeeze force (N) by its exact first integral, any gap h(r), Newtonian or power law.
+    """Axisymmetric Reynolds squeeze force (N) by its exact first integral.
+
+    Any gap h(r), Newtonian or power law.
 
     Mass conservation fixes the radial flux through every circle, q = V r / 2,
     and the slot flux q = a(h) G^(1/n) gives the pressure gradient
@@ -392,8 +432,12 @@ def quadrature_force(p: ReynoldsParams, nodes: int | None = None):
     return math.copysign(float(np.sum(wg * math.pi * r * r * G * drdxi)), p.velocity)
 
 
-def quadrature_force_many(radius, viscosity, gap, velocity, nodes: int = 16, domain: float = 1000.0):
-    """Batch version of :func:`quadrature_force` (Newtonian paraboloid gap; arrays of gap and velocity).
+def quadrature_force_many(
+    radius, viscosity, gap, velocity, nodes: int = 16, domain: float = 1000.0
+):
+    """Batch version of :func:`quadrature_force`.
+
+    Newtonian paraboloid gap; arrays of gap and velocity.
 
     Returns the squeeze force (N) for every ``gap`` (m) at once: one
     (gaps x nodes) array operation, for benchmarks against the damper on
@@ -406,14 +450,29 @@ def quadrature_force_many(radius, viscosity, gap, velocity, nodes: int = 16, dom
     r = rc * np.sinh(xg * xi_max)
     h = h0 + r * r / (2.0 * radius)
     integrand = r**3 / h**3 * rc * np.cosh(xg * xi_max) * xi_max
-    return 6.0 * math.pi * viscosity * np.asarray(velocity, dtype=float) * np.sum(wg * integrand, axis=-1)
+    return (
+        6.0
+        * math.pi
+        * viscosity
+        * np.asarray(velocity, dtype=float)
+        * np.sum(wg * integrand, axis=-1)
+    )
 
 
 @REYNOLDS.register("axisymmetric-quadrature")
 def _axisymmetric_quadrature(p: ReynoldsParams) -> Result:
     if p.sliding_velocity != 0.0:
-        raise ParameterError("sliding_velocity", "0 for method 'axisymmetric-quadrature' (use method 'xy')", p.sliding_velocity)
-    return dict(force=quadrature_force(p), r_max=p.domain * p.contact_radius, nit=1, units={"force": "N", "r_max": "m"})
+        raise ParameterError(
+            "sliding_velocity",
+            "0 for method 'axisymmetric-quadrature' (use method 'xy')",
+            p.sliding_velocity,
+        )
+    return dict(
+        force=quadrature_force(p),
+        r_max=p.domain * p.contact_radius,
+        nit=1,
+        units={"force": "N", "r_max": "m"},
+    )
 
 
 def solve(params: ReynoldsParams, *, method: str = "axisymmetric", rng=None) -> Result:

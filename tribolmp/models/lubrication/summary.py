@@ -43,7 +43,11 @@ def lubrication_summary(scene, *, gaps_over_radius=None, reynolds_cells: int = 4
     """
     p = reduced.params_from_scene(scene)
     p = reduced.Params(**{**p.__dict__, "reynolds_cells": reynolds_cells})
-    eps = np.geomspace(1e-4, 0.3, 9) if gaps_over_radius is None else np.asarray(gaps_over_radius, float)
+    eps = (
+        np.geomspace(1e-4, 0.3, 9)
+        if gaps_over_radius is None
+        else np.asarray(gaps_over_radius, float)
+    )
     eps = np.unique(np.append(eps, p.gap / p.radius))
     res = Result(method="lubrication-summary")
     with timed(res):
@@ -67,7 +71,8 @@ def lubrication_summary(scene, *, gaps_over_radius=None, reynolds_cells: int = 4
             gap_over_radius=eps,
             force_damper=fd,
             force_reynolds=fr,
-            error_damper_vs_reynolds=fd / fr - 1.0,  # kept for the JSON contract; = reynolds_grid_error
+            error_damper_vs_reynolds=fd / fr
+            - 1.0,  # kept for the JSON contract; = reynolds_grid_error
             reynolds_grid_error=fd / fr - 1.0,
             reynolds_truncation_error=np.array(tr),
         )
@@ -78,5 +83,7 @@ def lubrication_summary(scene, *, gaps_over_radius=None, reynolds_cells: int = 4
         "alpha": "N s", "radius": "m", "velocity": "m/s", "gap": "m", "force_damper": "N",
         "force_reynolds": "N", "force_brenner": "N",
     }
-    res["message"] = f"damper alpha = {res['alpha']:.4g} N s; Reynolds reference with {reynolds_cells} cells"
+    res["message"] = (
+        f"damper alpha = {res['alpha']:.4g} N s; Reynolds reference with {reynolds_cells} cells"
+    )
     return res

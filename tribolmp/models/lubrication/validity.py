@@ -47,9 +47,15 @@ def check_film_gap(gap_m: float, field: str = "gap") -> list[str]:
         ``gap_m`` below :data:`MOLECULAR_SIZE_M`: no continuum film exists there.
     """
     if not gap_m >= MOLECULAR_SIZE_M:
-        raise ParameterError(field, f"a film gap >= {MOLECULAR_SIZE_M:.1e} m (one molecular size; below it there is "
-                             "no continuum film, only solid contact)", gap_m)
+        raise ParameterError(
+            field,
+            f"a film gap >= {MOLECULAR_SIZE_M:.1e} m (one molecular size; below it there is "
+            "no continuum film, only solid contact)",
+            gap_m,
+        )
     if gap_m < CONTINUUM_DOUBTFUL_M:
-        return [f"{field} = {gap_m:.3g} m is below {CONTINUUM_DOUBTFUL_M:.0e} m (~10 molecular sizes): "
-                "layering makes the continuum film force doubtful"]
+        return [
+            f"{field} = {gap_m:.3g} m is below {CONTINUUM_DOUBTFUL_M:.0e} m (~10 molecular sizes): "
+            "layering makes the continuum film force doubtful"
+        ]
     return []
