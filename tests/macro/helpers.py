@@ -9,7 +9,10 @@ class InProcess:
 
 
 def run_main(capsys, *args):
-    """Run ``tribolmp ARGS`` through :func:`tribolmp.cli.main`; returns an object like the ``cli`` fixture's."""
+    """Run ``tribolmp ARGS`` through :func:`tribolmp.cli.main`.
+
+    Returns an object like the ``cli`` fixture's.
+    """
     capsys.readouterr()
     code = main([str(a) for a in args])
     cap = capsys.readouterr()

@@ -7,7 +7,12 @@ from tests.conftest import assert_one_line_error
 from tests.macro.helpers import run_main
 from tribolmp.errors import DataFileError
 from tribolmp.models.tribospectroscopy import models as M
-from tribolmp.models.tribospectroscopy.fit import MeasuredCurve, fit_length, read_curve_csv, write_curve_csv
+from tribolmp.models.tribospectroscopy.fit import (
+    MeasuredCurve,
+    fit_length,
+    read_curve_csv,
+    write_curve_csv,
+)
 
 LAM = 50e-9
 A = np.linspace(0.0, 0.5e-6, 26)
@@ -73,7 +78,9 @@ def test_relative_noise_needs_relative_weighting(rng):
     n = 30
     for _ in range(n):
         y = _pot(A) * (1 + 0.1 * rng.standard_normal(A.size))
-        r = fit_length(MeasuredCurve(A, y, "force_sq"), "potential", weighting="relative", n_boot=10, rng=rng)
+        r = fit_length(
+            MeasuredCurve(A, y, "force_sq"), "potential", weighting="relative", n_boot=10, rng=rng
+        )
         lo, hi = r.length_interval_m
         hits += lo <= LAM <= hi
     assert 0.45 <= hits / n <= 0.95
@@ -132,8 +139,12 @@ def test_cli_fit_json_and_bad_csvs(cli, capsys, tmp_path):
     assert_one_line_error(run_main(capsys, "tribospec", "fit", bad), "line 3", "force_N", code=2)
     bad.write_text("amp,force_N\n0,1\n")
     assert_one_line_error(run_main(capsys, "tribospec", "fit", bad), "amplitude_m", code=2)
-    assert_one_line_error(run_main(capsys, "tribospec", "fit", tmp_path / "nope.csv"), "nope.csv", code=2)
-    assert_one_line_error(run_main(capsys, "tribospec", "fit", bad, "--model", "best"), "model", code=2)
+    assert_one_line_error(
+        run_main(capsys, "tribospec", "fit", tmp_path / "nope.csv"), "nope.csv", code=2
+    )
+    assert_one_line_error(
+        run_main(capsys, "tribospec", "fit", bad, "--model", "best"), "model", code=2
+    )
 
 
 def test_noise_around_zero_is_accepted_and_fitted(cli, tmp_path, rng):
@@ -142,19 +153,27 @@ def test_noise_around_zero_is_accepted_and_fitted(cli, tmp_path, rng):
     f = M.shakedown_force(a, 1.5, 1.5 / 2e-7) + 0.05 * rng.standard_normal(a.size)
     assert (f < 0).any()
     path = tmp_path / "neg.csv"
-    path.write_text("amplitude_m,force_N\n" + "".join(f"{float(x)!r},{float(y)!r}\n" for x, y in zip(a, f)))
+    path.write_text(
+        "amplitude_m,force_N\n" + "".join(f"{float(x)!r},{float(y)!r}\n" for x, y in zip(a, f))
+    )
     curve = read_curve_csv(path)  # the old reader refused this: force_N: expected a value >= 0
     assert curve.value.min() < 0
     res = cli("tribospec", "fit", path, "--json", "--no-plot", "--noise", "additive")
     assert res.returncode == 0, res.stderr
     out = res.json()
-    assert out["model"] == "stiffness" and out["noise_model"] == "additive" and out["coverage_tested"] is True
+    assert (
+        out["model"] == "stiffness"
+        and out["noise_model"] == "additive"
+        and out["coverage_tested"] is True
+    )
     lo, hi = out["length_interval_m"]
     lo95, hi95 = out["length_interval_95_m"]
     assert lo95 <= lo <= out["length_m"] <= hi <= hi95
     # F^2 column with noise around zero (a pinning curve's tail) is accepted too
     y = _pot(A, b=0.0) + 0.03 * rng.standard_normal(A.size)
     path2 = tmp_path / "neg2.csv"
-    path2.write_text("amplitude_m,force_sq_N2\n" + "".join(f"{float(x)!r},{float(v)!r}\n" for x, v in zip(A, y)))
+    path2.write_text(
+        "amplitude_m,force_sq_N2\n" + "".join(f"{float(x)!r},{float(v)!r}\n" for x, v in zip(A, y))
+    )
     r = fit_length(read_curve_csv(path2), "auto")
     assert r.model == "potential" and r.fitted_quantity == "force_sq_N2"

@@ -70,11 +70,15 @@ def test_interval_method_and_coverage_flag():
     r = fit_length(curve, "stiffness", noise="proportional")
     assert "calibrated" in r.interval_method and r.coverage_tested is True
     r = fit_length(curve, "stiffness", noise="proportional", interval="profile")
-    assert "F threshold" in r.interval_method and r.coverage_tested is False  # the undercovering form
+    assert (
+        "F threshold" in r.interval_method and r.coverage_tested is False
+    )  # the undercovering form
     curve, _ = _data("stiffness", "additive", 26, np.random.default_rng(7))
     r = fit_length(curve, "auto", noise="additive")
     assert r.coverage_tested is True and r.noise_model == "additive"
-    assert fit_length(curve, "auto", n_boot=5).coverage_tested is False  # bootstrap hull: not the tested method
+    assert (
+        fit_length(curve, "auto", n_boot=5).coverage_tested is False
+    )  # bootstrap hull: not the tested method
 
 
 @pytest.mark.parametrize("kind, noise", CASES)

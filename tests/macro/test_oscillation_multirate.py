@@ -28,7 +28,12 @@ def test_oscillation_reproduces_mindlin_deresiewicz():
     d = c.indentation(N)
     u_s = MU * E_STAR * d / G_STAR  # full-slip displacement of Mindlin in MDR variables
     amp = 0.5 * u_s
-    res = oscillate(OscillationParams(normal_force=N, amplitude=amp, frequency=65e3, cycles=3, steps_per_cycle=400), c)
+    res = oscillate(
+        OscillationParams(
+            normal_force=N, amplitude=amp, frequency=65e3, cycles=3, steps_per_cycle=400
+        ),
+        c,
+    )
     assert res.force_n[-1] == pytest.approx(N, rel=1e-10)
     # first quarter cycle: Mindlin's loading curve
     q = slice(0, 101)
@@ -40,13 +45,21 @@ def test_oscillation_reproduces_mindlin_deresiewicz():
     u, f = res.u[last], res.force_x[last]
     du = np.gradient(u)
     unload = du < 0
-    assert np.max(np.abs(f[unload] - mindlin_loop(u[unload], amp, MU * N, u_s, "unload"))) < 5e-3 * MU * N
-    assert np.max(np.abs(f[~unload] - mindlin_loop(u[~unload], amp, MU * N, u_s, "reload"))) < 5e-3 * MU * N
+    assert (
+        np.max(np.abs(f[unload] - mindlin_loop(u[unload], amp, MU * N, u_s, "unload")))
+        < 5e-3 * MU * N
+    )
+    assert (
+        np.max(np.abs(f[~unload] - mindlin_loop(u[~unload], amp, MU * N, u_s, "reload")))
+        < 5e-3 * MU * N
+    )
     w_ref = mindlin_dissipation(amp, MU * N, u_s)
     # loop area: trapezoid with 400 steps per cycle (O(1/400^2)) plus the
     # spring discretisation of the slip annulus (O(dx/a) ~ 3e-3)
     assert res.dissipation_per_cycle_J[-1] == pytest.approx(w_ref, rel=5e-3)
-    assert res.dissipation_per_cycle_J[-1] == pytest.approx(res.dissipation_per_cycle_J[-2], rel=1e-9)
+    assert res.dissipation_per_cycle_J[-1] == pytest.approx(
+        res.dissipation_per_cycle_J[-2], rel=1e-9
+    )
 
 
 def test_averaged_scheme_matches_brute_force_short_window():
@@ -55,8 +68,15 @@ def test_averaged_scheme_matches_brute_force_short_window():
     L = MU * N / k
     for a in (0.4 * L, 1.0 * L):
         # drift per cycle V/f = 1.5 nm = 2.5 % (a = 0.4 L) of the amplitude
-        p = DriftParams(normal_force=N, amplitude=a, frequency=65e3, velocity=1e-4, duration=0.6e-3, steps_per_cycle=32,
-                        slow_steps=40)
+        p = DriftParams(
+            normal_force=N,
+            amplitude=a,
+            frequency=65e3,
+            velocity=1e-4,
+            duration=0.6e-3,
+            steps_per_cycle=32,
+            slow_steps=40,
+        )
         brute = drift_under_oscillation(p, c, scheme="brute")
         avg = drift_under_oscillation(p, c, scheme="averaged")
         f_avg = np.interp(brute.t, avg.t, avg.force)
@@ -67,7 +87,9 @@ def test_averaged_scheme_matches_brute_force_short_window():
 
 def test_averaged_cost_is_independent_of_frequency():
     c = _contact(n=101)
-    p = DriftParams(normal_force=N, amplitude=5e-8, frequency=65e3, velocity=1e-4, duration=1.0, slow_steps=400)
+    p = DriftParams(
+        normal_force=N, amplitude=5e-8, frequency=65e3, velocity=1e-4, duration=1.0, slow_steps=400
+    )
     avg = drift_under_oscillation(p, c, scheme="averaged")
     # one second of drift at 65 kHz: brute force would take 65e3 * 32 = 2e6 steps
     assert avg.steps == 400
@@ -104,8 +126,16 @@ def test_pulled_body_averaged_matches_brute_force_short_window(amp_frac):
     L = MU * N / c.stiffness(N)
     # 3 ms: the body goes from rest through its first slip (drive force reaches mu N at ~1.5 ms)
     # and slides at nu = v/(a w) ~ 0.2-0.6, where the velocity dependence of the mean force matters
-    p = PulledParams(mass=0.1, drive_stiffness=1e6, drive_velocity=1e-2, normal_force=N, amplitude=amp_frac * L,
-                     frequency=65e3, duration=3e-3, steps_per_cycle=32)
+    p = PulledParams(
+        mass=0.1,
+        drive_stiffness=1e6,
+        drive_velocity=1e-2,
+        normal_force=N,
+        amplitude=amp_frac * L,
+        frequency=65e3,
+        duration=3e-3,
+        steps_per_cycle=32,
+    )
     brute = pulled_under_oscillation(p, c, scheme="brute")
     avg = pulled_under_oscillation(p, c, scheme="averaged")
     f_avg = np.interp(brute.t, avg.t, avg.friction)
@@ -127,8 +157,15 @@ def test_pulled_body_averaged_cost_is_independent_of_frequency():
     c = _contact(n=101)
     steps = {}
     for f in (65e3, 650e3):
-        p = PulledParams(mass=0.1, drive_stiffness=1e6, drive_velocity=1e-2, normal_force=N, amplitude=5e-8,
-                         frequency=f, duration=0.05)
+        p = PulledParams(
+            mass=0.1,
+            drive_stiffness=1e6,
+            drive_velocity=1e-2,
+            normal_force=N,
+            amplitude=5e-8,
+            frequency=f,
+            duration=0.05,
+        )
         steps[f] = pulled_under_oscillation(p, c, scheme="averaged").steps
     # 0.05 s of drift; brute force would take 65e3 * 0.05 * 32 = 1e5 (resp. 1e6) steps
     assert steps[65e3] == steps[650e3] < 0.05 * 65e3 * 32 / 20

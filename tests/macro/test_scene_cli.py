@@ -7,24 +7,36 @@ import pytest
 
 from tests.conftest import assert_one_line_error
 from tests.macro.helpers import run_main
-from tribolmp.models import macro, tribospectroscopy as ts
+from tribolmp.models import macro
+from tribolmp.models import tribospectroscopy as ts
 from tribolmp.scene import default_scene
 
 
 def test_params_from_scene_and_chain_entry_points():
     scene = default_scene()
     p = ts.params_from_scene(scene)
-    assert p.normal_force == pytest.approx(scene.load.normal_force / 2)  # two contacts share the load
+    assert p.normal_force == pytest.approx(
+        scene.load.normal_force / 2
+    )  # two contacts share the load
     assert p.model == scene.tribospectroscopy.model
-    r = ts.tribospec_from_scene(scene, contact_stiffness=1e7, model="stiffness", amplitudes=[0.0, 5e-8, 1e-6])
+    r = ts.tribospec_from_scene(
+        scene, contact_stiffness=1e7, model="stiffness", amplitudes=[0.0, 5e-8, 1e-6]
+    )
     mu_n = scene.load.friction_coefficient * p.normal_force
-    assert r.force_N == pytest.approx(2 * mu_n * np.clip(1 - 1e7 * np.array([0, 5e-8, 1e-6]) / mu_n, 0, None), rel=1e-12)
+    assert r.force_N == pytest.approx(
+        2 * mu_n * np.clip(1 - 1e7 * np.array([0, 5e-8, 1e-6]) / mu_n, 0, None), rel=1e-12
+    )
     assert r.length_m == pytest.approx(mu_n / 1e7)
     sp = macro.params_from_scene(scene)
     assert sp.mass == scene.kinematics.mass
     # the default scene's profile is rough: its MDR row is drawn from an explicit Generator
-    res = macro.stick_slip_from_scene(scene, contact_law="mdr", law=macro.ConstantFriction(0.35, 0.3), duration=2e-3,
-                                      rng=np.random.default_rng(0))
+    res = macro.stick_slip_from_scene(
+        scene,
+        contact_law="mdr",
+        law=macro.ConstantFriction(0.35, 0.3),
+        duration=2e-3,
+        rng=np.random.default_rng(0),
+    )
     assert res.events[0]["from_phase"] == "stick"
 
 
@@ -38,7 +50,9 @@ def test_mdr_stiffness_of_the_scene_contact_is_hertz():
 
 
 def test_cli_simulate_rows_and_convention(cli, capsys):
-    res = cli("tribospec", "simulate", "--amplitudes", "0,1e-7,2e-7", "--model", "potential", "--json")
+    res = cli(
+        "tribospec", "simulate", "--amplitudes", "0,1e-7,2e-7", "--model", "potential", "--json"
+    )
     assert res.returncode == 0, res.stderr
     out = res.json()
     assert out["convention"] == "per-contact" and "dl/4" in out["amplitude_convention"]
@@ -47,25 +61,64 @@ def test_cli_simulate_rows_and_convention(cli, capsys):
     for r in rows:
         assert r["force_sq_N2"] == pytest.approx(r["force_N"] ** 2, rel=1e-12)
     lam = default_scene().tribospectroscopy.correlation_length
-    assert rows[1]["force_sq_N2"] / rows[0]["force_sq_N2"] == pytest.approx(float(ts.pinning_shape(1e-7 / lam)), rel=1e-8)
-    res = run_main(capsys, "tribospec", "simulate", "--amplitudes", "2e-7", "--convention", "probe", "--model",
-                   "potential", "--json")
+    assert rows[1]["force_sq_N2"] / rows[0]["force_sq_N2"] == pytest.approx(
+        float(ts.pinning_shape(1e-7 / lam)), rel=1e-8
+    )
+    res = run_main(
+        capsys,
+        "tribospec",
+        "simulate",
+        "--amplitudes",
+        "2e-7",
+        "--convention",
+        "probe",
+        "--model",
+        "potential",
+        "--json",
+    )
     probe = json.loads(res.stdout)
     assert probe["rows"][0]["amplitude_per_contact_m"] == pytest.approx(1e-7)
     assert probe["rows"][0]["force_N"] == pytest.approx(rows[1]["force_N"], rel=1e-12)
-    assert_one_line_error(run_main(capsys, "tribospec", "simulate", "--amplitudes=-1e-7"), "amplitudes", code=2)
-    assert_one_line_error(run_main(capsys, "tribospec", "simulate", "--amplitudes", "1e-7", "--model", "magic"),
-                          "model", code=2)
+    assert_one_line_error(
+        run_main(capsys, "tribospec", "simulate", "--amplitudes=-1e-7"), "amplitudes", code=2
+    )
+    assert_one_line_error(
+        run_main(capsys, "tribospec", "simulate", "--amplitudes", "1e-7", "--model", "magic"),
+        "model",
+        code=2,
+    )
 
 
 def test_cli_simulate_stiffness_and_oscillate(cli, capsys):
-    res = run_main(capsys, "tribospec", "simulate", "--amplitudes", "0,5e-8,1e-6", "--model", "stiffness",
-              "--contact-stiffness", "2e7", "--json")
+    res = run_main(
+        capsys,
+        "tribospec",
+        "simulate",
+        "--amplitudes",
+        "0,5e-8,1e-6",
+        "--model",
+        "stiffness",
+        "--contact-stiffness",
+        "2e7",
+        "--json",
+    )
     assert res.returncode == 0, res.stderr
     out = json.loads(res.stdout)
     mu_n = 0.3 * 5.0
-    assert [r["force_N"] for r in out["rows"]] == pytest.approx([2 * mu_n, 2 * mu_n * (1 - 2e7 * 5e-8 / mu_n), 0.0])
-    osc = cli("macro", "oscillate", "--amplitude", "5e-8", "--cycles", "2", "--steps-per-cycle", "100", "--json")
+    assert [r["force_N"] for r in out["rows"]] == pytest.approx(
+        [2 * mu_n, 2 * mu_n * (1 - 2e7 * 5e-8 / mu_n), 0.0]
+    )
+    osc = cli(
+        "macro",
+        "oscillate",
+        "--amplitude",
+        "5e-8",
+        "--cycles",
+        "2",
+        "--steps-per-cycle",
+        "100",
+        "--json",
+    )
     assert osc.returncode == 0, osc.stderr
     o = osc.json()
     assert o["normal_force_N"] == pytest.approx(10.0, rel=1e-8)
@@ -87,14 +140,27 @@ def test_rough_contact_from_the_contact_model(rng):
     assert c.stiffness(N) == pytest.approx(k[q > 0].sum(), rel=1e-12)
     # micro-slip: the averaged shakedown force against brute force on the rough row
     L = c.mu * N / c.stiffness(N)
-    p = macro.DriftParams(normal_force=N, amplitude=0.3 * L, frequency=65e3, velocity=0.01 * L * 65e3,
-                          duration=250 / 65e3, steps_per_cycle=16, slow_steps=250)
+    p = macro.DriftParams(
+        normal_force=N,
+        amplitude=0.3 * L,
+        frequency=65e3,
+        velocity=0.01 * L * 65e3,
+        duration=250 / 65e3,
+        steps_per_cycle=16,
+        slow_steps=250,
+    )
     b = macro.drift_under_oscillation(p, c, scheme="brute")
     a = macro.drift_under_oscillation(p, c, scheme="averaged")
     # drift per cycle 1 % of mu N / k: averaging error of that order of 2 mu N
     assert np.max(np.abs(b.force - np.interp(b.t, a.t, a.force))) < 0.02 * 2 * c.mu * N
-    res = macro.stick_slip_from_scene(scene, contact_law="mdr", law=macro.ConstantFriction(0.4, 0.3),
-                                      rng=np.random.default_rng(3), duration=5e-3, unload_time=4e-3)
+    res = macro.stick_slip_from_scene(
+        scene,
+        contact_law="mdr",
+        law=macro.ConstantFriction(0.4, 0.3),
+        rng=np.random.default_rng(3),
+        duration=5e-3,
+        unload_time=4e-3,
+    )
     assert np.all(np.isfinite(res.x))
 
 
@@ -114,7 +180,9 @@ def test_rough_profile_without_rng_is_an_error_not_a_sphere():
 
 def test_tribospec_on_a_rough_scene_states_the_sphere_tip(capsys):
     # the probe-tip sphere used for a rough scene's stiffness model is stated, not silent
-    res = run_main(capsys, "tribospec", "simulate", "--model", "stiffness", "--amplitudes", "0,1e-7", "--json")
+    res = run_main(
+        capsys, "tribospec", "simulate", "--model", "stiffness", "--amplitudes", "0,1e-7", "--json"
+    )
     assert res.returncode == 0
     out = json.loads(res.stdout)
     assert len(out["warnings"]) == 1 and "sphere" in out["warnings"][0]

@@ -42,8 +42,15 @@ def test_implicit_cost_flat_explicit_cost_grows_with_contact_stiffness():
     nfev = {}
     for method in ("radau-rk45", "rk45"):
         for kc in (1e9, 1e12):
-            p = StickSlipParams(mass=0.1, drive_stiffness=1e5, drive_velocity=0.01, normal_force=10.0,
-                                duration=0.01, contact_stiffness=kc, rtol=1e-8)
+            p = StickSlipParams(
+                mass=0.1,
+                drive_stiffness=1e5,
+                drive_velocity=0.01,
+                normal_force=10.0,
+                duration=0.01,
+                contact_stiffness=kc,
+                rtol=1e-8,
+            )
             nfev[method, kc] = stick_slip(p, law, method=method).nfev
     # explicit RK is stability-limited by omega_c ~ sqrt(k_c): 1000x stiffer -> ~30x more work
     assert nfev["rk45", 1e12] > 10 * nfev["rk45", 1e9]
@@ -61,11 +68,20 @@ def test_pulled_body_averaged_matches_brute_force_over_20_ms():
     L = mu * N / c.stiffness(N)
     # 20 ms = 1300 cycles: first slip, then a long stretch of steady sliding with the body-contact
     # mode ringing down; drift 0.2 mm
-    p = PulledParams(mass=0.1, drive_stiffness=1e6, drive_velocity=1e-2, normal_force=N, amplitude=0.5 * L,
-                     frequency=65e3, duration=0.02, steps_per_cycle=32)
+    p = PulledParams(
+        mass=0.1,
+        drive_stiffness=1e6,
+        drive_velocity=1e-2,
+        normal_force=N,
+        amplitude=0.5 * L,
+        frequency=65e3,
+        duration=0.02,
+        steps_per_cycle=32,
+    )
     b = pulled_under_oscillation(p, c, scheme="brute")
     a = pulled_under_oscillation(p, c, scheme="averaged")
-    # same bound as the 3 ms default test (averaging error 0.7 % of mu N there); it must not grow with time
+    # same bound as the 3 ms default test (averaging error 0.7 % of mu N
+    # there); it must not grow with time
     assert np.max(np.abs(b.friction - np.interp(b.t, a.t, a.friction))) < 0.03 * mu * N
     assert np.max(np.abs(b.x - np.interp(b.t, a.t, a.x))) < 1e-3 * np.max(np.abs(b.x))
     assert a.steps < b.steps / 15

@@ -39,7 +39,9 @@ def _check_cycle(res, rel):
     slips = [b["t"] - a["t"] for a, b in zip(starts, stops)]
     assert slips == pytest.approx([REF["slip_time"]] * len(slips), rel=rel)
     assert [e["force_N"] for e in stops] == pytest.approx([REF["force_min"]] * len(stops), rel=rel)
-    assert [e["force_N"] for e in starts] == pytest.approx([REF["force_max"]] * len(starts), rel=rel)
+    assert [e["force_N"] for e in starts] == pytest.approx(
+        [REF["force_max"]] * len(starts), rel=rel
+    )
 
 
 def test_analytic_segments_reproduce_closed_form():
@@ -93,7 +95,9 @@ def test_velocity_weakening_runs_without_chattering():
 
 def test_stiff_contact_spring_converges_to_rigid_contact():
     # k_c = 1e12 N/m on m = 0.1 kg: contact frequency 3e6 rad/s vs drive 1e3 rad/s.
-    res = stick_slip(StickSlipParams(**P, duration=0.03, contact_stiffness=1e12), LAW, method="auto")
+    res = stick_slip(
+        StickSlipParams(**P, duration=0.03, contact_stiffness=1e12), LAW, method="auto"
+    )
     assert res.method == "radau-rk45"
     starts, stops = _cycles(res)
     # the contact compliance shifts the cycle by O(k_d / k_c) = 1e-7
@@ -111,7 +115,9 @@ def test_vanishing_normal_load_becomes_free_oscillation():
     after = res.t > t_off + 1e-9
     i0 = np.argmax(after)
     # after the load vanished the body is a frictionless oscillator on the drive spring
-    ref = free_oscillation(res.t[after], 0.1, 1e5, 0.01, res.x[i0], res.v[i0], res.t[i0], 0.01 * res.t[i0])
+    ref = free_oscillation(
+        res.t[after], 0.1, 1e5, 0.01, res.x[i0], res.v[i0], res.t[i0], 0.01 * res.t[i0]
+    )
     assert np.max(np.abs(res.x[after] - ref)) < 1e-6 * np.ptp(res.x[after]) + 1e-12
     # no stick once the load is gone (a free body never sticks)
     assert all(e["to_phase"] != "stick" for e in res.events if e["t"] > t_off)
@@ -160,12 +166,25 @@ def test_params_validation():
     with pytest.raises(ParameterError, match="mass"):
         StickSlipParams(mass=-1.0)
     with pytest.raises(ParameterError, match="method"):
-        stick_slip(StickSlipParams(**P, duration=0.01, contact_stiffness=1e9), LAW, method="analytic")
+        stick_slip(
+            StickSlipParams(**P, duration=0.01, contact_stiffness=1e9), LAW, method="analytic"
+        )
 
 
 def test_cli_stick_slip(cli, capsys, tmp_path):
-    res = cli("macro", "stick-slip", "--mu-s", "0.4", "--mu-k", "0.3", "--velocity", "0.01", "--duration", "0.02",
-              "--json")
+    res = cli(
+        "macro",
+        "stick-slip",
+        "--mu-s",
+        "0.4",
+        "--mu-k",
+        "0.3",
+        "--velocity",
+        "0.01",
+        "--duration",
+        "0.02",
+        "--json",
+    )
     assert res.returncode == 0, res.stderr
     out = res.json()
     assert out["method"] == "analytic"
@@ -173,14 +192,22 @@ def test_cli_stick_slip(cli, capsys, tmp_path):
     # default scene: N = 10 N, stick ends at mu_s N
     assert out["events"][0]["force_N"] == pytest.approx(4.0, rel=1e-12)
     (tmp_path / "r.json").write_text('{"mu": "high"}')
-    assert_one_line_error(cli("macro", "stick-slip", "--friction-file", tmp_path / "r.json"), "mu", code=2)
-    assert_one_line_error(run_main(capsys, "macro", "stick-slip", "--mu-s", "0.2", "--mu-k", "0.3"), "mu_s", code=2)
-    assert_one_line_error(run_main(capsys, "macro", "stick-slip", "--method", "euler"), "method", code=2)
+    assert_one_line_error(
+        cli("macro", "stick-slip", "--friction-file", tmp_path / "r.json"), "mu", code=2
+    )
+    assert_one_line_error(
+        run_main(capsys, "macro", "stick-slip", "--mu-s", "0.2", "--mu-k", "0.3"), "mu_s", code=2
+    )
+    assert_one_line_error(
+        run_main(capsys, "macro", "stick-slip", "--method", "euler"), "method", code=2
+    )
 
 
 @pytest.mark.parametrize("kc", [0.0, 1e9])
 def test_zero_normal_load_from_the_start(kc):
-    p = StickSlipParams(**{**P, "normal_force": 0.0}, duration=0.02, contact_stiffness=kc, rtol=1e-10)
+    p = StickSlipParams(
+        **{**P, "normal_force": 0.0}, duration=0.02, contact_stiffness=kc, rtol=1e-10
+    )
     res = stick_slip(p, LAW)
     # no load, no friction: the body oscillates freely about the moving spring end from rest
     ref = free_oscillation(res.t, 0.1, 1e5, 0.01, 0.0, 0.0, 0.0, 0.0)
@@ -200,8 +227,14 @@ def test_tabulated_load_from_zero_on_an_elastic_contact_does_not_chatter():
     from tribolmp.models.macro.rigid_body import StickSlipParams, stick_slip
 
     k, V, mu, N, kc = 1e6, 0.01, 0.1, 10.0, 1e9
-    p = StickSlipParams(mass=0.1, drive_stiffness=k, drive_velocity=V, normal_force=N, duration=2e-3,
-                        contact_stiffness=kc)
+    p = StickSlipParams(
+        mass=0.1,
+        drive_stiffness=k,
+        drive_velocity=V,
+        normal_force=N,
+        duration=2e-3,
+        contact_stiffness=kc,
+    )
     t = np.linspace(0.0, 2e-3, 201)
     load = N * np.minimum(t / 2.5e-5, 1.0)  # reaches N long before the drive force reaches mu N
     res = stick_slip(p, ConstantFriction(mu), normal_load=(t, load))

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from tribolmp.models.tribospectroscopy import models as M
 from tribolmp.models.macro.contact import ContactSprings, profile_from_geometry
+from tribolmp.models.tribospectroscopy import models as M
 
 E_STAR = 206e9 / (2 * (1 - 0.3**2))
 G_STAR = 1.0 / (2 * (2 - 0.3) / (4 * 206e9 / 2.6))
@@ -27,7 +27,9 @@ def test_pinning_shape_limits_and_physics_notes():
     assert 0.65 < drop < 0.72
     for s in (1e3, 1e4, 1e5):
         # the asymptote's first correction is O(s^-2) relative (oscillating J0^2 tail)
-        assert M.pinning_shape(s) == pytest.approx(M.pinning_shape_asymptote(s), rel=10 / s**2 + 1e-9)
+        assert M.pinning_shape(s) == pytest.approx(
+            M.pinning_shape_asymptote(s), rel=10 / s**2 + 1e-9
+        )
 
 
 def test_fast_table_matches_exact():

@@ -80,23 +80,39 @@ __all__ = [
 ]
 
 
-def solve(params: StickSlipParams, *, method: str = "auto", rng=None, law: FrictionLaw | None = None):
+def solve(
+    params: StickSlipParams, *, method: str = "auto", rng=None, law: FrictionLaw | None = None
+):
     """Model-contract alias of :func:`stick_slip` (``rng`` unused: deterministic)."""
     return stick_slip(params, law, method=method)
 
 
 def params_from_scene(scene, **overrides) -> StickSlipParams:
-    """:class:`StickSlipParams` from ``[kinematics]`` (mass, drive stiffness, velocity, duration) and ``[load]``."""
+    """:class:`StickSlipParams` from ``[kinematics]`` and ``[load]``.
+
+    Mass, drive stiffness, velocity and duration come from ``[kinematics]``.
+    """
     kin = scene.kinematics
-    kw = dict(mass=kin.mass, drive_stiffness=kin.drive_stiffness, drive_velocity=kin.sliding_velocity,
-              normal_force=scene.load.normal_force, duration=kin.duration)
+    kw = dict(
+        mass=kin.mass,
+        drive_stiffness=kin.drive_stiffness,
+        drive_velocity=kin.sliding_velocity,
+        normal_force=scene.load.normal_force,
+        duration=kin.duration,
+    )
     kw.update(overrides)
     if kw["drive_velocity"] <= 0:
-        raise ParameterError("[kinematics].sliding_velocity", "a drive velocity > 0 m/s for stick-slip", kw["drive_velocity"])
+        raise ParameterError(
+            "[kinematics].sliding_velocity",
+            "a drive velocity > 0 m/s for stick-slip",
+            kw["drive_velocity"],
+        )
     return StickSlipParams(**kw)
 
 
-def contact_from_scene(scene, *, mu: float | None = None, n_springs: int | None = None, rng=None) -> ContactSprings:
+def contact_from_scene(
+    scene, *, mu: float | None = None, n_springs: int | None = None, rng=None
+) -> ContactSprings:
     """Return the MDR spring row of the scene's contact at its normal load.
 
     ``[geometry].profile`` sphere/cone/flat maps directly.  ``rough`` with an
@@ -110,26 +126,47 @@ def contact_from_scene(scene, *, mu: float | None = None, n_springs: int | None 
     E, G = scene.effective_modulus, scene.effective_shear_modulus
     mu = friction_coefficient(scene).mu if mu is None else mu
     if geo.profile == "rough" and (rng is None or scene.roughness is None):
-        raise ParameterError("rng" if rng is None else "[roughness]",
-                             "a numpy Generator to draw the rough MDR profile of [geometry].profile = 'rough'"
-                             if rng is None else "a [roughness] section for [geometry].profile = 'rough'", None)
+        raise ParameterError(
+            "rng" if rng is None else "[roughness]",
+            "a numpy Generator to draw the rough MDR profile of [geometry].profile = 'rough'"
+            if rng is None
+            else "a [roughness] section for [geometry].profile = 'rough'",
+            None,
+        )
     if geo.profile == "rough":
         from ..contact.rough import mdr_profiles_from_psd, self_affine_psd
 
         r = scene.roughness
-        psd = self_affine_psd(r.rms_height, r.hurst, r.rolloff_wavelength, r.short_cutoff_wavelength)
+        psd = self_affine_psd(
+            r.rms_height, r.hurst, r.rolloff_wavelength, r.short_cutoff_wavelength
+        )
         x, g = mdr_profiles_from_psd(psd, n_springs or r.grid_points, r.pixel_size, 1, rng)
         return ContactSprings(x, np.asarray(g)[0], E, G, mu)
     kind = geo.profile if geo.profile in ("sphere", "cone", "flat") else "sphere"
     n = n_springs or max(3, min(scene.contact.springs, 2001))
-    x, g = profile_from_geometry(kind, max(scene.load.normal_force, 1e-6), E, n_springs=n, radius=geo.radius,
-                                 half_angle_deg=geo.half_angle_deg)
+    x, g = profile_from_geometry(
+        kind,
+        max(scene.load.normal_force, 1e-6),
+        E,
+        n_springs=n,
+        radius=geo.radius,
+        half_angle_deg=geo.half_angle_deg,
+    )
     return ContactSprings(x, g, E, G, mu)
 
 
-def stick_slip_from_scene(scene, mu: float | None = None, contact_law: str = "rigid", *,
-                          law: FrictionLaw | None = None, contact_stiffness: float | None = None,
-                          method: str = "auto", rng=None, contact_gap: float | None = None, **overrides):
+def stick_slip_from_scene(
+    scene,
+    mu: float | None = None,
+    contact_law: str = "rigid",
+    *,
+    law: FrictionLaw | None = None,
+    contact_stiffness: float | None = None,
+    method: str = "auto",
+    rng=None,
+    contact_gap: float | None = None,
+    **overrides,
+):
     """Chain entry point: stick-slip of the scene's body.
 
     Parameters
@@ -175,27 +212,58 @@ def stick_slip_from_scene(scene, mu: float | None = None, contact_law: str = "ri
         overrides["contact_stiffness"] = float(contact_stiffness)
     elif contact_law == "mdr":
         p0 = params_from_scene(scene, **overrides)
-        kc = contact_from_scene(scene, mu=law.mu_s, rng=rng).stiffness_table(max(p0.normal_force, 1e-9))
+        kc = contact_from_scene(scene, mu=law.mu_s, rng=rng).stiffness_table(
+            max(p0.normal_force, 1e-9)
+        )
     params = params_from_scene(scene, **overrides)
     if contact_gap is None:
         return stick_slip(params, law, method=method, contact_stiffness=kc)
-    sq = squeeze_approach(squeeze_params_from_scene(scene, normal_force=params.normal_force, duration=params.duration,
-                                                    mass=0.0, contact_gap=contact_gap),
-                          contact_from_scene(scene, mu=law.mu_s, rng=rng), n_out=2001)
-    res = stick_slip(params, law, method="rk45" if method in ("auto", "analytic") else method, contact_stiffness=kc,
-                     normal_load=(sq.t, sq.contact_force))
+    sq = squeeze_approach(
+        squeeze_params_from_scene(
+            scene,
+            normal_force=params.normal_force,
+            duration=params.duration,
+            mass=0.0,
+            contact_gap=contact_gap,
+        ),
+        contact_from_scene(scene, mu=law.mu_s, rng=rng),
+        n_out=2001,
+    )
+    res = stick_slip(
+        params,
+        law,
+        method="rk45" if method in ("auto", "analytic") else method,
+        contact_stiffness=kc,
+        normal_load=(sq.t, sq.contact_force),
+    )
     res["squeeze"] = sq
     return res
 
 
-def oscillation_from_scene(scene, amplitude: float, *, frequency: float | None = None, cycles: int = 3,
-                           steps_per_cycle: int = 200, mu: float | None = None, rng=None, progress=None):
-    """Chain entry point: prescribed tangential oscillation of the scene's contact (micro-slip loops).
+def oscillation_from_scene(
+    scene,
+    amplitude: float,
+    *,
+    frequency: float | None = None,
+    cycles: int = 3,
+    steps_per_cycle: int = 200,
+    mu: float | None = None,
+    rng=None,
+    progress=None,
+):
+    """Chain entry point.
+
+    Prescribed tangential oscillation of the scene's contact (micro-slip loops).
 
     ``progress(fraction, what)`` is called ~200 times over the steps (long runs).
     """
     ts = scene.tribospectroscopy
     f = frequency or (ts.frequency if ts is not None else 65e3)
-    p = OscillationParams(normal_force=scene.load.normal_force, amplitude=amplitude, frequency=f, cycles=cycles,
-                          steps_per_cycle=steps_per_cycle)
+    p = OscillationParams(
+        normal_force=scene.load.normal_force,
+        amplitude=amplitude,
+        frequency=f,
+        cycles=cycles,
+        steps_per_cycle=steps_per_cycle,
+    )
     return oscillate(p, contact_from_scene(scene, mu=mu, rng=rng), progress=progress)

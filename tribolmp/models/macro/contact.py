@@ -40,11 +40,20 @@ def profile_from_geometry(kind: str, normal_force: float, E_star: float, *, n_sp
         # F ~ 2 E* kappa c a^(n+1) n/(n+1): invert the power law's force-radius relation
         from ..contact.mdr import kappa
 
-        a = (N * (exponent + 1) / (2 * E_star * exponent * kappa(exponent) * coefficient)) ** (1.0 / (exponent + 1))
+        a = (N * (exponent + 1) / (2 * E_star * exponent * kappa(exponent) * coefficient)) ** (
+            1.0 / (exponent + 1)
+        )
     else:
         raise ParameterError("profile", "one of ['sphere', 'cone', 'flat', 'power']", kind)
-    return axisymmetric_profile(kind, n_springs, 1.5 * a, radius=radius, half_angle_deg=half_angle_deg,
-                                exponent=exponent, coefficient=coefficient)
+    return axisymmetric_profile(
+        kind,
+        n_springs,
+        1.5 * a,
+        radius=radius,
+        half_angle_deg=half_angle_deg,
+        exponent=exponent,
+        coefficient=coefficient,
+    )
 
 
 @dataclass
@@ -84,8 +93,17 @@ class ContactSprings:
             if not np.all(np.isfinite(self.g)):  # flat punch: force is linear beyond full contact
                 hi = g0 + load / f_hi * (hi - g0) * 1.000001 if f_hi > 0 else hi
             else:
-                raise NoContactError(f"contact: the spring row is too short to carry {load:g} N (max {f_hi:g} N); widen x_max")
-        return brentq(lambda d: normal_force(self.x, self.g, d, self.E_star) - load, g0, hi, xtol=1e-16, rtol=1e-13)
+                raise NoContactError(
+                    "contact: the spring row is too short to "
+                    f"carry {load:g} N (max {f_hi:g} N); widen x_max"
+                )
+        return brentq(
+            lambda d: normal_force(self.x, self.g, d, self.E_star) - load,
+            g0,
+            hi,
+            xtol=1e-16,
+            rtol=1e-13,
+        )
 
     def normal_force(self, d: float) -> float:
         """MDR normal force (N) at indentation ``d`` (m)."""
@@ -94,7 +112,9 @@ class ContactSprings:
         return normal_force(self.x, self.g, d, self.E_star)
 
     def springs(self, load: float) -> tuple[np.ndarray, np.ndarray]:
-        """Per-spring normal forces ``E* w_i f_i`` (N) and tangential stiffnesses ``G* l_i`` (N/m) at ``load``.
+        """Per-spring normal forces (N) and tangential stiffnesses (N/m) at ``load``.
+
+        Normal forces ``E* w_i f_i``, tangential stiffnesses ``G* l_i``.
 
         ``w_i`` is the spring width and ``l_i`` the contact length it owns, as
         in :class:`TangentialMDR` (they differ only in the cells cut by the
@@ -117,7 +137,7 @@ class ContactSprings:
         return TangentialMDR(self.x, self.g, self.E_star, self.G_star, self.mu)
 
     def stiffness(self, load: float) -> float:
-        """Initial tangential stiffness (N/m) at ``load``: all contact springs sticking.
+        """Return the initial tangential stiffness (N/m) at ``load``: all contact springs sticking.
 
         Taken from :attr:`TangentialMDR.stiffness_x` after a normal approach
         without tangential motion (``2 G* a`` for an axisymmetric contact).
@@ -129,7 +149,10 @@ class ContactSprings:
         return float(t.stiffness_x)
 
     def stiffness_table(self, load_max: float, n: int = 64):
-        """Callable ``k(N)`` (N/m) interpolating :meth:`stiffness` on ``[0, load_max]`` (for varying loads)."""
+        """Callable ``k(N)`` (N/m) interpolating :meth:`stiffness` on ``[0, load_max]``.
+
+        Used for varying loads.
+        """
         loads = load_max * np.linspace(0.0, 1.0, n) ** 3  # dense near 0, where k ~ N^(1/3)
         ks = np.array([self.stiffness(L) for L in loads])
         return lambda N: float(np.interp(N, loads, ks))

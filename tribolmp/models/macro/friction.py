@@ -24,8 +24,15 @@ import numpy as np
 from ...errors import DataFileError, ParameterError
 from ..base import MethodRegistry, check_positive, check_range
 
-__all__ = ["FrictionLaw", "ConstantFriction", "VelocityWeakening", "TabulatedFriction", "FRICTION_LAWS",
-           "make_friction_law", "load_friction_law"]
+__all__ = [
+    "FrictionLaw",
+    "ConstantFriction",
+    "VelocityWeakening",
+    "TabulatedFriction",
+    "FRICTION_LAWS",
+    "make_friction_law",
+    "load_friction_law",
+]
 
 FRICTION_LAWS = MethodRegistry("friction law")
 
@@ -36,11 +43,14 @@ class FrictionLaw:
     mu_s: float
 
     def kinetic(self, v: float) -> float:  # pragma: no cover - abstract
+        """Return the kinetic coefficient (1) at sliding speed ``v`` (m/s)."""
         raise NotImplementedError
 
     def _check(self) -> None:
         if self.kinetic(0.0) > self.mu_s * (1 + 1e-12):
-            raise ParameterError("mu_s", f"a static coefficient >= mu_k(0) = {self.kinetic(0.0):g}", self.mu_s)
+            raise ParameterError(
+                "mu_s", f"a static coefficient >= mu_k(0) = {self.kinetic(0.0):g}", self.mu_s
+            )
 
 
 @FRICTION_LAWS.register("constant")
@@ -108,7 +118,10 @@ class VelocityWeakening(FrictionLaw):
 @FRICTION_LAWS.register("table")
 @dataclass(frozen=True)
 class TabulatedFriction(FrictionLaw):
-    """``mu_k(v)`` interpolated linearly in a table (clamped outside); ``mu_s`` defaults to the table maximum at v = min."""
+    """``mu_k(v)`` interpolated linearly in a table (clamped outside).
+
+    ``mu_s`` defaults to the table maximum at v = min.
+    """
 
     velocity: tuple[float, ...] = (0.0, 1.0)
     mu: tuple[float, ...] = (0.3, 0.3)
@@ -118,8 +131,12 @@ class TabulatedFriction(FrictionLaw):
         v = np.asarray(self.velocity, dtype=float)
         m = np.asarray(self.mu, dtype=float)
         if v.ndim != 1 or v.size < 1 or v.shape != m.shape:
-            raise ParameterError("velocity, mu", "two lists of equal length >= 1", f"{v.size}, {m.size}")
-        if not (np.all(np.isfinite(v)) and np.all(np.isfinite(m)) and np.all(v >= 0) and np.all(m >= 0)):
+            raise ParameterError(
+                "velocity, mu", "two lists of equal length >= 1", f"{v.size}, {m.size}"
+            )
+        if not (
+            np.all(np.isfinite(v)) and np.all(np.isfinite(m)) and np.all(v >= 0) and np.all(m >= 0)
+        ):
             raise ParameterError("velocity, mu", "finite non-negative numbers", "invalid entries")
         order = np.argsort(v)
         object.__setattr__(self, "velocity", tuple(v[order]))
@@ -158,31 +175,52 @@ def load_friction_law(path: str | Path, mu_s: float | None = None) -> FrictionLa
     try:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
-        raise DataFileError(f"{name}: expected a readable rates.json or mu(v) CSV, got {getattr(exc, 'strerror', None) or exc}") from None
+        raise DataFileError(
+            f"{name}: expected a readable rates.json or mu(v) "
+            f"CSV, got {getattr(exc, 'strerror', None) or exc}"
+        ) from None
     if path.suffix.lower() == ".json":
         try:
             data = json.loads(text)
         except json.JSONDecodeError as exc:
-            raise DataFileError(f"{name}: expected valid JSON, got {exc.msg} at line {exc.lineno}") from None
+            raise DataFileError(
+                f"{name}: expected valid JSON, got {exc.msg} at line {exc.lineno}"
+            ) from None
         if not isinstance(data, dict):
             raise DataFileError(f"{name}: expected a JSON object, got {type(data).__name__}")
         if "velocity_m_s" in data and "mu" in data:
             v, m = data["velocity_m_s"], data["mu"]
             if not (isinstance(v, list) and isinstance(m, list)):
-                raise DataFileError(f"{name}: velocity_m_s, mu: expected two lists, got {type(v).__name__}, {type(m).__name__}")
+                raise DataFileError(
+                    f"{name}: velocity_m_s, mu: expected two lists, "
+                    f"got {type(v).__name__}, {type(m).__name__}"
+                )
             try:
-                return TabulatedFriction(tuple(float(a) for a in v), tuple(float(b) for b in m), mu_s)
+                return TabulatedFriction(
+                    tuple(float(a) for a in v), tuple(float(b) for b in m), mu_s
+                )
             except (TypeError, ValueError, ParameterError) as exc:
-                raise DataFileError(f"{name}: velocity_m_s, mu: expected finite non-negative numbers, got {exc}") from None
+                raise DataFileError(
+                    f"{name}: velocity_m_s, mu: expected finite non-negative numbers, got {exc}"
+                ) from None
         mu = data.get("mu")
-        if isinstance(mu, bool) or not isinstance(mu, (int, float)) or not math.isfinite(mu) or mu < 0:
+        if (
+            isinstance(mu, bool)
+            or not isinstance(mu, (int, float))
+            or not math.isfinite(mu)
+            or mu < 0
+        ):
             raise DataFileError(f"{name}: mu: expected a finite number >= 0, got {mu!r}")
         return ConstantFriction(mu_s=float(mu) if mu_s is None else mu_s, mu_k=float(mu))
-    rows = list(csv.reader(line for line in text.splitlines() if line.strip() and not line.startswith("#")))
+    rows = list(
+        csv.reader(line for line in text.splitlines() if line.strip() and not line.startswith("#"))
+    )
     header = [h.strip() for h in rows[0]] if rows else []
     for col in ("velocity_m_s", "mu"):
         if col not in header:
-            raise DataFileError(f"{name}: column {col}: expected in the header, got columns {header}")
+            raise DataFileError(
+                f"{name}: column {col}: expected in the header, got columns {header}"
+            )
     iv, im = header.index("velocity_m_s"), header.index("mu")
     v, m = [], []
     for lineno, row in enumerate(rows[1:], start=2):
@@ -191,9 +229,13 @@ def load_friction_law(path: str | Path, mu_s: float | None = None) -> FrictionLa
             try:
                 val = float(cell)
             except ValueError:
-                raise DataFileError(f"{name}: line {lineno}: {col}: expected a finite number, got {cell!r}") from None
+                raise DataFileError(
+                    f"{name}: line {lineno}: {col}: expected a finite number, got {cell!r}"
+                ) from None
             if not math.isfinite(val) or val < 0:
-                raise DataFileError(f"{name}: line {lineno}: {col}: expected a finite number >= 0, got {cell!r}")
+                raise DataFileError(
+                    f"{name}: line {lineno}: {col}: expected a finite number >= 0, got {cell!r}"
+                )
             out.append(val)
     if not v:
         raise DataFileError(f"{name}: expected at least one data row, got none")

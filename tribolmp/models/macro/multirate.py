@@ -34,8 +34,16 @@ import numpy as np
 from ...scene.fields import param, validate_dataclass
 from ..base import MethodRegistry, Result, timed
 
-__all__ = ["AveragedContact", "DriftParams", "drift_under_oscillation", "DRIFT_SCHEMES", "jenkins_mean_force",
-           "PulledParams", "pulled_under_oscillation", "PULLED_SCHEMES"]
+__all__ = [
+    "AveragedContact",
+    "DriftParams",
+    "drift_under_oscillation",
+    "DRIFT_SCHEMES",
+    "jenkins_mean_force",
+    "PulledParams",
+    "pulled_under_oscillation",
+    "PULLED_SCHEMES",
+]
 
 DRIFT_SCHEMES = MethodRegistry("multirate scheme")
 PULLED_SCHEMES = MethodRegistry("pulled-body multirate scheme")
@@ -61,17 +69,27 @@ class AveragedContact:
         interpolation); without it, the ``v -> 0`` limits (imposed slow drift).
     """
 
-    def __init__(self, spring_normal, spring_stiffness, mu: float, amplitude: float, frequency: float | None = None,
-                 n_velocity: int = 65):
+    def __init__(
+        self,
+        spring_normal,
+        spring_stiffness,
+        mu: float,
+        amplitude: float,
+        frequency: float | None = None,
+        n_velocity: int = 65,
+    ):
         q = np.asarray(spring_normal, dtype=float)
         self.k = np.asarray(spring_stiffness, dtype=float) * np.ones_like(q)
         self.slide = mu * q  # sliding limit of every spring (N)
         self.limit = np.maximum(0.0, self.slide - self.k * amplitude)
         self.e = np.zeros_like(self.k)  # elastic elongation of the averaged springs (m)
         self.X = 0.0
-        self.va = amplitude * 2 * np.pi * frequency if frequency else None  # velocity amplitude a w (m/s)
+        self.va = (
+            amplitude * 2 * np.pi * frequency if frequency else None
+        )  # velocity amplitude a w (m/s)
         if self.va:
-            # Table of the per-spring cycle-mean limit against nu = |v|/(a w) (sin-spaced: arcsin-like near 1).
+            # Table of the per-spring cycle-mean limit against nu = |v|/(a
+            # w) (sin-spaced: arcsin-like near 1).
             self.nu = np.sin(0.5 * np.pi * np.linspace(0.0, 1.0, n_velocity))
             with np.errstate(divide="ignore", invalid="ignore"):
                 kappa = np.where(self.slide > 0, self.k * amplitude / self.slide, 0.0)
@@ -90,7 +108,10 @@ class AveragedContact:
         return (1.0 - w) * self.table[:, j] + w * self.table[:, j + 1]
 
     def step(self, X: float, velocity: float = 0.0) -> float:
-        """Move the slow coordinate to ``X`` (m) at slow speed ``velocity`` (m/s); return the cycle-mean force (N)."""
+        """Move the slow coordinate to ``X`` (m) at slow speed ``velocity`` (m/s).
+
+        Return the cycle-mean force (N).
+        """
         e = self.e + (X - self.X)
         with np.errstate(divide="ignore", invalid="ignore"):
             cap = np.where(self.k > 0, self.limits(velocity) / self.k, 0.0)
@@ -198,7 +219,9 @@ def _averaged(p: DriftParams, contact):
 
 
 def jenkins_mean_force(nu, kappa, *, points_per_cycle: int = 2048, cycles: int = 3):
-    """Steady cycle-mean force of one Coulomb spring under drift plus oscillation, in units of its slip limit.
+    """Steady cycle-mean force of one Coulomb spring under drift plus oscillation.
+
+    In units of its slip limit.
 
     The spring (stiffness k, slip limit F_s) is driven by ``u = v t + a sin(w t)``.
     In units of ``F_s`` and ``F_s/k`` the drive is ``kappa (nu theta + sin theta)``
@@ -210,10 +233,14 @@ def jenkins_mean_force(nu, kappa, *, points_per_cycle: int = 2048, cycles: int =
     rate-independent element) over ``cycles`` cycles from a start on the steady
     branch; the mean is taken over the last cycle.  Broadcasts ``nu``, ``kappa``.
     """
-    nu, kappa = np.broadcast_arrays(np.abs(np.asarray(nu, dtype=float)), np.asarray(kappa, dtype=float))
-    # start at theta = 0 with the force the steady cycle has there when it slips at the top (kappa < 1)
-    # or at the bottom (kappa >= 1); one slip erases the memory, so the last cycle is steady
-    e = np.where(kappa < 1.0, 1.0 - kappa, np.clip(-1.0 + kappa * (1.0 + 0.5 * np.pi * nu), -1.0, 1.0))
+    nu, kappa = np.broadcast_arrays(
+        np.abs(np.asarray(nu, dtype=float)), np.asarray(kappa, dtype=float)
+    )
+    # start at theta = 0 with the force the steady cycle has there when it slips at the top (kappa
+    # < 1) or at the bottom (kappa >= 1); one slip erases the memory, so the last cycle is steady
+    e = np.where(
+        kappa < 1.0, 1.0 - kappa, np.clip(-1.0 + kappa * (1.0 + 0.5 * np.pi * nu), -1.0, 1.0)
+    )
     theta = 2 * np.pi * np.arange(1, points_per_cycle + 1) / points_per_cycle
     u_prev = np.zeros_like(nu)
     acc = np.zeros_like(nu)
@@ -254,7 +281,8 @@ class PulledParams:
     steps_per_cycle : int
         Brute force: steps per oscillation cycle.
     steps_per_period : int
-        Averaged scheme: steps per period ``2 pi sqrt(m/(k_d + k_contact))`` of the slow body-contact mode.
+        Averaged scheme: steps per period ``2 pi sqrt(m/(k_d + k_contact))`` of the slow
+        body-contact mode.
     """
 
     mass: float = param(0.1, unit="kg", lo=0.0, lo_open=True, hi=1e6)
@@ -292,8 +320,16 @@ def pulled_under_oscillation(params: PulledParams, contact, *, scheme: str = "av
     res = Result(method=scheme)
     with timed(res):
         t, x, v, f, steps = run(params, contact)
-    res.update(t=t, x=x, v=v, friction=f, drive_force=params.drive_stiffness * (params.drive_velocity * t - x),
-               nit=steps, steps=steps, units={"t": "s", "x": "m", "v": "m/s", "friction": "N", "drive_force": "N"})
+    res.update(
+        t=t,
+        x=x,
+        v=v,
+        friction=f,
+        drive_force=params.drive_stiffness * (params.drive_velocity * t - x),
+        nit=steps,
+        steps=steps,
+        units={"t": "s", "x": "m", "v": "m/s", "friction": "N", "drive_force": "N"},
+    )
     return res
 
 

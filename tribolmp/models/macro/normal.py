@@ -73,15 +73,26 @@ class SqueezeParams:
 
 
 def squeeze_params_from_scene(scene, **overrides) -> SqueezeParams:
-    """:class:`SqueezeParams` from ``[lubricant]`` (viscosity, film thickness), ``[geometry].radius``,
-    ``[load].normal_force`` and ``[kinematics]`` (mass, duration).  Requires a ``[lubricant]`` section.
+    """:class:`SqueezeParams` from the scene.
+
+    Reads ``[lubricant]`` (viscosity, film thickness), ``[geometry].radius``,
+    ``[load].normal_force`` and ``[kinematics]`` (mass, duration).  Requires a ``[lubricant]``
+    section.
     """
     from ...errors import ParameterError
 
     if scene.lubricant is None:
-        raise ParameterError("[lubricant]", "a [lubricant] section for the squeeze damper", "nothing")
-    kw = {"normal_force": scene.load.normal_force, "radius": scene.geometry.radius, "viscosity": scene.lubricant.viscosity,
-          "gap": scene.lubricant.film_thickness, "duration": scene.kinematics.duration, "mass": scene.kinematics.mass}
+        raise ParameterError(
+            "[lubricant]", "a [lubricant] section for the squeeze damper", "nothing"
+        )
+    kw = {
+        "normal_force": scene.load.normal_force,
+        "radius": scene.geometry.radius,
+        "viscosity": scene.lubricant.viscosity,
+        "gap": scene.lubricant.film_thickness,
+        "duration": scene.kinematics.duration,
+        "mass": scene.kinematics.mass,
+    }
     if "load" in overrides:  # the old name of normal_force
         overrides["normal_force"] = overrides.pop("load")
     kw.update(overrides)
@@ -118,7 +129,9 @@ def squeeze_approach(params: SqueezeParams, contact=None, *, n_out: int = 201) -
 
         raise ParameterError("contact", "a ContactSprings when contact_gap > 0", None)
 
-    def gap_of(s):  # Newton trials of the implicit solver may probe huge |s|: keep h representable (> 0)
+    def gap_of(
+        s,
+    ):  # Newton trials of the implicit solver may probe huge |s|: keep h representable (> 0)
         return h0 * math.exp(min(max(s, -700.0), 700.0))
 
     def damping(h):  # N s/m: the damper is linear in the approach speed
@@ -163,10 +176,20 @@ def squeeze_approach(params: SqueezeParams, contact=None, *, n_out: int = 201) -
     res = Result(method="radau-log-gap")
     with timed(res):
         t_out = np.linspace(0.0, p.duration, n_out)
-        sol = solve_ivp(rhs, (0.0, p.duration), y0, method="Radau", jac=jac, t_eval=t_out, rtol=p.rtol,
-                        atol=[p.rtol] + ([p.rtol * max(W, 1e-30) * p.duration / h0 + 1e-300] if m > 0 else []))
+        sol = solve_ivp(
+            rhs,
+            (0.0, p.duration),
+            y0,
+            method="Radau",
+            jac=jac,
+            t_eval=t_out,
+            rtol=p.rtol,
+            atol=[p.rtol] + ([p.rtol * max(W, 1e-30) * p.duration / h0 + 1e-300] if m > 0 else []),
+        )
         if sol.status != 0:
-            raise ConvergenceError(f"squeeze approach: integrator failed at t = {sol.t[-1]:g} s: {sol.message}")
+            raise ConvergenceError(
+                f"squeeze approach: integrator failed at t = {sol.t[-1]:g} s: {sol.message}"
+            )
         s = sol.y[0]
         # h may underflow to 0.0 in float64 when the film keeps thinning (log_gap stays exact), so
         # nothing below evaluates the damper at h: with c(h) = alpha / h, the film force is
@@ -177,11 +200,26 @@ def squeeze_approach(params: SqueezeParams, contact=None, *, n_out: int = 201) -
         V = -h * s_dot
         film = -alpha * s_dot
         fc = np.array([solid(hi) for hi in h])
-    res.update(t=sol.t, gap=h, log_gap=s, approach_velocity=V, film_force=film, contact_force=fc, nfev=sol.nfev,
-               nit=int(sol.t.size), alpha=alpha,
-               units={"t": "s", "gap": "m", "approach_velocity": "m/s", "film_force": "N", "contact_force": "N",
-                      "alpha": "N s"},
-               message=f"gap {h0:g} -> {h0:g}*exp({s[-1]:.6g}) m in {p.duration:g} s")
+    res.update(
+        t=sol.t,
+        gap=h,
+        log_gap=s,
+        approach_velocity=V,
+        film_force=film,
+        contact_force=fc,
+        nfev=sol.nfev,
+        nit=int(sol.t.size),
+        alpha=alpha,
+        units={
+            "t": "s",
+            "gap": "m",
+            "approach_velocity": "m/s",
+            "film_force": "N",
+            "contact_force": "N",
+            "alpha": "N s",
+        },
+        message=f"gap {h0:g} -> {h0:g}*exp({s[-1]:.6g}) m in {p.duration:g} s",
+    )
     if fc[-1] < W * (1.0 - 1e-6) and s_dot[-1] < 0.0:
         # The solid contact cannot (yet) carry the load: the film is still being squeezed out
         # (it thins exponentially and never ruptures in this model).

@@ -21,7 +21,16 @@ import math
 
 import numpy as np
 
-__all__ = ["restick_criterion", "squeeze_approach_gap", "vibrated_coulomb_mean_force", "stick_slip_cycle", "free_oscillation", "mindlin_loading", "mindlin_loop", "mindlin_dissipation"]
+__all__ = [
+    "restick_criterion",
+    "squeeze_approach_gap",
+    "vibrated_coulomb_mean_force",
+    "stick_slip_cycle",
+    "free_oscillation",
+    "mindlin_loading",
+    "mindlin_loop",
+    "mindlin_dissipation",
+]
 
 
 def stick_slip_cycle(mass: float, stiffness: float, velocity: float, normal_force: float,
@@ -42,8 +51,14 @@ def stick_slip_cycle(mass: float, stiffness: float, velocity: float, normal_forc
     w = math.sqrt(stiffness / mass)
     A = (mu_s - mu_k) * normal_force / stiffness
     if A <= 0:
-        return dict(force_max=mu_k * normal_force, force_min=mu_k * normal_force, slip_time=math.inf,
-                    stick_time=0.0, period=math.inf, slip_distance=math.inf)
+        return dict(
+            force_max=mu_k * normal_force,
+            force_min=mu_k * normal_force,
+            slip_time=math.inf,
+            stick_time=0.0,
+            period=math.inf,
+            slip_distance=math.inf,
+        )
     slip = (math.pi + 2.0 * math.atan(velocity / (w * A))) / w
     stick = 2.0 * A / velocity
     return dict(
@@ -84,7 +99,11 @@ def restick_criterion(mass: float, drive_stiffness: float, velocity: float, norm
         (v0), ``repeats`` (bool, dF > dF_c), ``min_slip_velocity_m_s`` (V - A omega).
     """
     k, V, m = float(drive_stiffness), float(velocity), float(mass)
-    v0 = 0.0 if contact_stiffness <= 0 or math.isinf(contact_stiffness) else V * k / (k + contact_stiffness)
+    v0 = (
+        0.0
+        if contact_stiffness <= 0 or math.isinf(contact_stiffness)
+        else V * k / (k + contact_stiffness)
+    )
     dF = (float(mu_s) - float(mu_k)) * float(normal_force)
     threshold = math.sqrt(k * m * v0 * (2.0 * V - v0))
     a_omega = math.hypot(dF / math.sqrt(k * m), V - v0)
@@ -92,8 +111,13 @@ def restick_criterion(mass: float, drive_stiffness: float, velocity: float, norm
                 repeats=bool(dF > threshold), min_slip_velocity_m_s=V - a_omega)
 
 
-def free_oscillation(t, mass: float, stiffness: float, velocity: float, x0: float, v0: float, t0: float, xd0: float):
-    """Position (m) of a frictionless body pulled by a spring whose end moves as ``xd0 + V (t - t0)``."""
+def free_oscillation(
+    t, mass: float, stiffness: float, velocity: float, x0: float, v0: float, t0: float, xd0: float
+):
+    """Position (m) of a frictionless body pulled by a spring.
+
+    The spring's end moves as ``xd0 + V (t - t0)``.
+    """
     w = math.sqrt(stiffness / mass)
     tau = np.asarray(t, dtype=float) - t0
     xi0, dxi0 = x0 - xd0, v0 - velocity
@@ -101,7 +125,9 @@ def free_oscillation(t, mass: float, stiffness: float, velocity: float, x0: floa
 
 
 def mindlin_loading(u, mu_n: float, u_slip: float):
-    """Mindlin's first loading curve ``F = mu N [1 - (1 - u/u_s)^{3/2}]`` (N), full slip beyond ``u_s``.
+    """Mindlin's first loading curve ``F = mu N [1 - (1 - u/u_s)^{3/2}]`` (N).
+
+    Full slip beyond ``u_s``.
 
     ``u_slip = mu E* d / G*`` in MDR variables (d the indentation).
     """
@@ -129,8 +155,16 @@ def mindlin_dissipation(u_amp: float, mu_n: float, u_slip: float) -> float:
     """
     from scipy.integrate import quad
 
-    return quad(lambda u: float(mindlin_loop(u, u_amp, mu_n, u_slip, "reload") - mindlin_loop(u, u_amp, mu_n, u_slip, "unload")),
-                -u_amp, u_amp, epsabs=0, epsrel=1e-12)[0]
+    return quad(
+        lambda u: float(
+            mindlin_loop(u, u_amp, mu_n, u_slip, "reload")
+            - mindlin_loop(u, u_amp, mu_n, u_slip, "unload")
+        ),
+        -u_amp,
+        u_amp,
+        epsabs=0,
+        epsrel=1e-12,
+    )[0]
 
 
 def squeeze_approach_gap(t, gap0: float, load: float, radius: float, viscosity: float):
@@ -152,4 +186,6 @@ def vibrated_coulomb_mean_force(nu):
     ``<sign(v + a w cos)> = (2/pi) arcsin(nu)``, ``nu = v/(a w)``, and 1 for ``nu >= 1``.
     """
     nu = np.asarray(nu, dtype=float)
-    return np.sign(nu) * np.where(np.abs(nu) >= 1.0, 1.0, 2.0 / np.pi * np.arcsin(np.clip(np.abs(nu), 0.0, 1.0)))
+    return np.sign(nu) * np.where(
+        np.abs(nu) >= 1.0, 1.0, 2.0 / np.pi * np.arcsin(np.clip(np.abs(nu), 0.0, 1.0))
+    )

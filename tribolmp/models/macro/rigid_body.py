@@ -86,7 +86,7 @@ class StickSlipParams:
         validate_dataclass(self)
 
     def load(self, t: float) -> float:
-        """Normal load N(t) (N)."""
+        """Return the normal load N(t) (N)."""
         if self.unload_time > 0:
             return self.normal_force * max(0.0, 1.0 - t / self.unload_time)
         return self.normal_force
@@ -106,31 +106,57 @@ class _Trace:
         self.phase.extend([phase] * np.atleast_1d(t).size)
 
     def event(self, t, old, new, force, load):
-        self.events.append(dict(t=float(t), from_phase=_NAME[old], to_phase=_NAME[new], force_N=float(force), normal_N=float(load)))
+        self.events.append(
+            dict(
+                t=float(t),
+                from_phase=_NAME[old],
+                to_phase=_NAME[new],
+                force_N=float(force),
+                normal_N=float(load),
+            )
+        )
 
 
 _NAME = {STICK: "stick", SLIP_POS: "slip+", SLIP_NEG: "slip-"}
 
 
 class _LoadTable:
-    """``StickSlipParams`` seen with a tabulated normal load N(t) (piecewise linear between knots)."""
+    """``StickSlipParams`` seen with a tabulated normal load N(t).
+
+    Piecewise linear between knots.
+    """
 
     def __init__(self, params: StickSlipParams, t, n):
         t, n = np.asarray(t, dtype=float), np.asarray(n, dtype=float)
         if t.ndim != 1 or t.size < 2 or t.shape != n.shape:
-            raise ParameterError("normal_load", "two 1D arrays (t, N) of equal length >= 2", f"shapes {t.shape}, {n.shape}")
-        if not (np.all(np.isfinite(t)) and np.all(np.isfinite(n)) and np.all(np.diff(t) > 0) and np.all(n >= 0)):
-            raise ParameterError("normal_load", "finite increasing times (s) and finite loads >= 0 N", "invalid entries")
+            raise ParameterError(
+                "normal_load",
+                "two 1D arrays (t, N) of equal length >= 2",
+                f"shapes {t.shape}, {n.shape}",
+            )
+        if not (
+            np.all(np.isfinite(t))
+            and np.all(np.isfinite(n))
+            and np.all(np.diff(t) > 0)
+            and np.all(n >= 0)
+        ):
+            raise ParameterError(
+                "normal_load",
+                "finite increasing times (s) and finite loads >= 0 N",
+                "invalid entries",
+            )
         self._p, self._t, self._n = params, t, n
         self.load_knots = t
 
     def __getattr__(self, name):
-        if name.startswith("_"):  # only the params' public fields are forwarded (no recursion on _p)
+        if name.startswith(
+            "_"
+        ):  # only the params' public fields are forwarded (no recursion on _p)
             raise AttributeError(name)
         return getattr(self._p, name)
 
     def load(self, t: float) -> float:
-        """Normal load N(t) (N), held constant outside the table."""
+        """Return the normal load N(t) (N), held constant outside the table."""
         return float(np.interp(t, self._t, self._n))
 
 
@@ -174,9 +200,15 @@ def stick_slip(params: StickSlipParams, law: FrictionLaw | None = None, *, metho
         params = _LoadTable(params, *normal_load)
     if method == "auto":
         rigid = contact_stiffness is None and params.contact_stiffness == 0.0
-        if rigid and isinstance(law, ConstantFriction) and params.unload_time == 0.0 and normal_load is None:
+        if (
+            rigid
+            and isinstance(law, ConstantFriction)
+            and params.unload_time == 0.0
+            and normal_load is None
+        ):
             method = "analytic"
-        else:  # explicit RK is fine for a rigid contact; a contact spring makes the stick phase stiff
+        # explicit RK is fine for a rigid contact; a contact spring makes the stick phase stiff
+        else:
             method = "rk45" if rigid else "radau-rk45"
     run = STICK_SLIP_METHODS.get(method)
     res = Result(method=method)
@@ -203,7 +235,9 @@ def _guard(tr: _Trace, t_start: float, t_end: float, p: StickSlipParams, streak:
         raise ConvergenceError(f"stick-slip: more than max_events = {p.max_events} transitions")
     streak = streak + 1 if t_end - t_start <= 1e-12 * p.duration else 0
     if streak > 8:
-        raise ConvergenceError(f"stick-slip: chattering at t = {t_end:g} s (repeated zero-length phases)")
+        raise ConvergenceError(
+            f"stick-slip: chattering at t = {t_end:g} s (repeated zero-length phases)"
+        )
     return streak
 
 
@@ -213,8 +247,13 @@ def _next_phase(F: float, N: float, law: FrictionLaw, V: float) -> int:
     return SLIP_POS if (F > 0 or (F == 0 and V > 0)) else SLIP_NEG
 
 
-def _rigid_stick_end(p: StickSlipParams, law: FrictionLaw, t0: float, x: float) -> tuple[float, int]:
-    """First t > t0 where |k_d (V t - x)| reaches mu_s N(t): both sides are piecewise linear in t."""
+def _rigid_stick_end(
+    p: StickSlipParams, law: FrictionLaw, t0: float, x: float
+) -> tuple[float, int]:
+    """First t > t0 where |k_d (V t - x)| reaches mu_s N(t).
+
+    Both sides are piecewise linear in t.
+    """
     k, V = p.drive_stiffness, p.drive_velocity
     inner = getattr(p, "load_knots", [p.unload_time])
     knots = [t0] + [float(tk) for tk in inner if t0 < tk < p.duration] + [p.duration]
@@ -247,7 +286,12 @@ def _ode_runner(solver: str, slip_solver: str | None = None):
         tr = _Trace()
         t, x, v, phase, anchor = 0.0, x0, 0.0, STICK, x0
         nfev, streak = 0, 0
-        opts = dict(method=solver, rtol=p.rtol, atol=1e-12 * max(1.0, abs(V) * p.duration), max_step=max_step)
+        opts = dict(
+            method=solver,
+            rtol=p.rtol,
+            atol=1e-12 * max(1.0, abs(V) * p.duration),
+            max_step=max_step,
+        )
         tr.add(t, x, v, phase)
         while t < p.duration:
             t_start = t
@@ -271,7 +315,10 @@ def _ode_runner(solver: str, slip_solver: str | None = None):
 
                 def jac(tt, y):
                     kk = kc(p.load(tt))
-                    return [[0.0, 1.0], [-(k + kk) / m, -2 * p.contact_damping_ratio * math.sqrt(kk * m) / m]]
+                    return [
+                        [0.0, 1.0],
+                        [-(k + kk) / m, -2 * p.contact_damping_ratio * math.sqrt(kk * m) / m],
+                    ]
 
                 def ev(tt, y):
                     kk = kc(p.load(tt))
@@ -281,7 +328,9 @@ def _ode_runner(solver: str, slip_solver: str | None = None):
                 ev.terminal, ev.direction = True, 1
                 k0 = max(kc(p.load(t)), 1e-300)
                 e_scale = max(law.mu_s * p.load(t), k * V * max_step, 1e-30) / (k0 + k)
-                sopts = dict(opts, atol=[p.rtol * e_scale, p.rtol * e_scale * math.sqrt((k0 + k) / m)])
+                sopts = dict(
+                    opts, atol=[p.rtol * e_scale, p.rtol * e_scale * math.sqrt((k0 + k) / m)]
+                )
                 if solver in ("Radau", "BDF", "LSODA"):
                     sopts["jac"] = jac
                 sol = solve_ivp(rhs, (t, p.duration), [x - anchor, v], events=ev, **sopts)
@@ -289,7 +338,9 @@ def _ode_runner(solver: str, slip_solver: str | None = None):
                 tr.add(sol.t, anchor + sol.y[0], sol.y[1], STICK)
                 t, x, v = float(sol.t[-1]), anchor + float(sol.y[0, -1]), float(sol.y[1, -1])
                 if sol.status == -1:
-                    raise ConvergenceError(f"stick-slip: integrator failed at t = {t:g} s: {sol.message}")
+                    raise ConvergenceError(
+                        f"stick-slip: integrator failed at t = {t:g} s: {sol.message}"
+                    )
                 if sol.status != 1:
                     break
                 kk = kc(p.load(t))
@@ -299,7 +350,10 @@ def _ode_runner(solver: str, slip_solver: str | None = None):
                 sgn = float(phase)
 
                 def rhs(tt, y, sgn=sgn):
-                    return [y[1], (k * (V * tt - y[0]) - sgn * law.kinetic(abs(y[1])) * p.load(tt)) / m]
+                    return [
+                        y[1],
+                        (k * (V * tt - y[0]) - sgn * law.kinetic(abs(y[1])) * p.load(tt)) / m,
+                    ]
 
                 def jac(tt, y, sgn=sgn):
                     h = 1e-6 * max(abs(y[1]), 1e-9)
@@ -318,7 +372,9 @@ def _ode_runner(solver: str, slip_solver: str | None = None):
                 tr.add(sol.t, sol.y[0], sol.y[1], phase)
                 t, x, v = float(sol.t[-1]), float(sol.y[0, -1]), float(sol.y[1, -1])
                 if sol.status == -1:
-                    raise ConvergenceError(f"stick-slip: integrator failed at t = {t:g} s: {sol.message}")
+                    raise ConvergenceError(
+                        f"stick-slip: integrator failed at t = {t:g} s: {sol.message}"
+                    )
                 if sol.status != 1:
                     break
                 N = p.load(t)
@@ -346,10 +402,18 @@ STICK_SLIP_METHODS.register("radau-rk45")(_ode_runner("Radau", "RK45"))
 @STICK_SLIP_METHODS.register("analytic")
 def _analytic(p: StickSlipParams, law: FrictionLaw, kc_of_load, x0: float):
     """Exact event-driven segments: harmonic slip, linear stick (rigid, constant mu and N)."""
-    if (not isinstance(law, ConstantFriction) or p.contact_stiffness != 0.0 or kc_of_load is not None
-            or p.unload_time > 0 or isinstance(p, _LoadTable)):
-        raise ParameterError("method", "'analytic' only with a constant friction law, rigid contact and constant load",
-                             "analytic")
+    if (
+        not isinstance(law, ConstantFriction)
+        or p.contact_stiffness != 0.0
+        or kc_of_load is not None
+        or p.unload_time > 0
+        or isinstance(p, _LoadTable)
+    ):
+        raise ParameterError(
+            "method",
+            "'analytic' only with a constant friction law, rigid contact and constant load",
+            "analytic",
+        )
     m, k, V, N = p.mass, p.drive_stiffness, p.drive_velocity, p.normal_force
     w = math.sqrt(k / m)
     tr = _Trace()
@@ -381,7 +445,12 @@ def _analytic(p: StickSlipParams, law: FrictionLaw, kc_of_load, x0: float):
                     tau += period
                 tau_end = min(tau_end, tau)
             taus = np.linspace(0.0, tau_end, 33)
-            xs = V * (t + taus) - sgn * law.mu_k * N / k + xi0 * np.cos(w * taus) + dxi0 / w * np.sin(w * taus)
+            xs = (
+                V * (t + taus)
+                - sgn * law.mu_k * N / k
+                + xi0 * np.cos(w * taus)
+                + dxi0 / w * np.sin(w * taus)
+            )
             vs = V + R * np.cos(w * taus + phi)
             tr.add(t + taus, xs, vs, phase)
             t, x, v = t + tau_end, float(xs[-1]), float(vs[-1])
@@ -461,9 +530,22 @@ def oscillate(params: OscillationParams, contact, *, progress=None) -> Result:
         work = np.concatenate([[0.0], np.cumsum(0.5 * (fx[1:] + fx[:-1]) * np.diff(u))])
         per = work[:: params.steps_per_cycle]
         res.update(
-            t=t, u=u, force_x=fx, force_n=fn, indentation_m=d,
-            dissipation_per_cycle_J=np.diff(per), stiffness_x=tang.stiffness_x, nit=n,
-            units={"t": "s", "u": "m", "force_x": "N", "force_n": "N", "dissipation_per_cycle_J": "J",
-                   "stiffness_x": "N/m", "indentation_m": "m"},
+            t=t,
+            u=u,
+            force_x=fx,
+            force_n=fn,
+            indentation_m=d,
+            dissipation_per_cycle_J=np.diff(per),
+            stiffness_x=tang.stiffness_x,
+            nit=n,
+            units={
+                "t": "s",
+                "u": "m",
+                "force_x": "N",
+                "force_n": "N",
+                "dissipation_per_cycle_J": "J",
+                "stiffness_x": "N/m",
+                "indentation_m": "m",
+            },
         )
     return res

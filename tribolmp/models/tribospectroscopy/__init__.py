@@ -91,7 +91,9 @@ class TribospecParams:
         as long as the drift per cycle is small (recorded in the output).
     """
 
-    amplitudes: tuple[float, ...] = param(tuple(i * 1e-8 for i in range(51)), unit="m", lo=0.0, hi=1e-2)
+    amplitudes: tuple[float, ...] = param(
+        tuple(i * 1e-8 for i in range(51)), unit="m", lo=0.0, hi=1e-2
+    )
     model: str = param("potential", choices=("potential", "stiffness"))
     law: str = param("linear", choices=("linear", "microslip"))
     mu: float = param(0.3, lo=0.0, lo_open=True, hi=10.0)
@@ -114,11 +116,20 @@ class TribospecParams:
             raise ParameterError("amplitudes", "at least one amplitude", self.amplitudes)
 
     def contact(self):
-        """Return the MDR spring row of one contact (:class:`~tribolmp.models.macro.contact.ContactSprings`)."""
+        """Return the MDR spring row of one contact.
+
+        A :class:`~tribolmp.models.macro.contact.ContactSprings`.
+        """
         from ..macro.contact import ContactSprings, profile_from_geometry
 
-        x, g = profile_from_geometry(self.profile, self.normal_force, self.E_star, n_springs=self.n_springs,
-                                     radius=self.radius, half_angle_deg=self.half_angle_deg)
+        x, g = profile_from_geometry(
+            self.profile,
+            self.normal_force,
+            self.E_star,
+            n_springs=self.n_springs,
+            radius=self.radius,
+            half_angle_deg=self.half_angle_deg,
+        )
         return ContactSprings(x, g, self.E_star, self.G_star, self.mu)
 
 
@@ -172,10 +183,24 @@ def solve(params: TribospecParams, *, method: str | None = None, rng=None) -> Re
         a = np.asarray(params.amplitudes, dtype=float)
         f2, extra = model(params, a)
     res.update(
-        amplitude_m=a, force_N=np.sqrt(f2), force_sq_N2=f2, model=name, law=params.law if name == "stiffness" else "",
-        convention="per-contact", amplitude_convention=CONVENTION_TEXT["per-contact"], frequency_Hz=params.frequency,
-        units={"amplitude_m": "m", "force_N": "N", "force_sq_N2": "N^2", "length_m": "m", "contact_stiffness_N_m": "N/m",
-               "shakedown_limit_m": "m", "force0_N": "N", "frequency_Hz": "Hz"},
+        amplitude_m=a,
+        force_N=np.sqrt(f2),
+        force_sq_N2=f2,
+        model=name,
+        law=params.law if name == "stiffness" else "",
+        convention="per-contact",
+        amplitude_convention=CONVENTION_TEXT["per-contact"],
+        frequency_Hz=params.frequency,
+        units={
+            "amplitude_m": "m",
+            "force_N": "N",
+            "force_sq_N2": "N^2",
+            "length_m": "m",
+            "contact_stiffness_N_m": "N/m",
+            "shakedown_limit_m": "m",
+            "force0_N": "N",
+            "frequency_Hz": "Hz",
+        },
         **extra,
     )
     res.message = f"{name}: {a.size} amplitudes, characteristic length {extra['length_m']:.3g} m"
@@ -240,7 +265,9 @@ def tribospec_from_scene(scene, contact_stiffness: float | None = None, *, model
         k = float(contact_stiffness)
         if not (math.isfinite(k) and k > 0):
             # A zero or non-finite stiffness from upstream is a failed contact stage, not "use MDR".
-            raise ParameterError("contact_stiffness", "a finite stiffness > 0 N/m from the contact model", k)
+            raise ParameterError(
+                "contact_stiffness", "a finite stiffness > 0 N/m from the contact model", k
+            )
         over["contact_stiffness"] = k
     if model is not None:
         over["model"] = model

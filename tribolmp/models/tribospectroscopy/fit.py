@@ -49,7 +49,14 @@ from ...rng import as_generator
 from ..base import MethodRegistry, Result, timed
 from .models import CONVENTION_TEXT, pinning_shape_fast, to_per_contact
 
-__all__ = ["MeasuredCurve", "read_curve_csv", "write_curve_csv", "fit_length", "SHAPES", "FIT_MODELS"]
+__all__ = [
+    "MeasuredCurve",
+    "read_curve_csv",
+    "write_curve_csv",
+    "fit_length",
+    "SHAPES",
+    "FIT_MODELS",
+]
 
 #: model name -> shape(s, quantity) with quantity "force" or "force_sq".
 SHAPES = MethodRegistry("tribospectroscopy model")
@@ -117,19 +124,33 @@ def read_curve_csv(path: str | Path, convention: str = "per-contact") -> Measure
     try:
         text = Path(path).read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
-        raise DataFileError(f"{name}: expected a readable UTF-8 CSV file, got {getattr(exc, 'strerror', None) or exc}") from None
-    rows = list(csv.reader(line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#")))
+        raise DataFileError(
+            f"{name}: expected a readable UTF-8 CSV file, "
+            f"got {getattr(exc, 'strerror', None) or exc}"
+        ) from None
+    rows = list(
+        csv.reader(
+            line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#")
+        )
+    )
     if not rows:
-        raise DataFileError(f"{name}: expected a header with amplitude_m and force_N or force_sq_N2, got an empty file")
+        raise DataFileError(
+            f"{name}: expected a header with amplitude_m "
+            "and force_N or force_sq_N2, got an empty file"
+        )
     header = [h.strip() for h in rows[0]]
     if "amplitude_m" not in header:
-        raise DataFileError(f"{name}: column amplitude_m: expected in the header, got columns {header}")
+        raise DataFileError(
+            f"{name}: column amplitude_m: expected in the header, got columns {header}"
+        )
     if "force_sq_N2" in header:
         col, quantity = "force_sq_N2", "force_sq"
     elif "force_N" in header:
         col, quantity = "force_N", "force"
     else:
-        raise DataFileError(f"{name}: column force_N or force_sq_N2: expected in the header, got columns {header}")
+        raise DataFileError(
+            f"{name}: column force_N or force_sq_N2: expected in the header, got columns {header}"
+        )
     ia, iv = header.index("amplitude_m"), header.index(col)
     amp, val = [], []
     for lineno, row in enumerate(rows[1:], start=2):
@@ -138,15 +159,23 @@ def read_curve_csv(path: str | Path, convention: str = "per-contact") -> Measure
             try:
                 x = float(cell)
             except ValueError:
-                raise DataFileError(f"{name}: line {lineno}: {cname}: expected a finite number, got {cell!r}") from None
+                raise DataFileError(
+                    f"{name}: line {lineno}: {cname}: expected a finite number, got {cell!r}"
+                ) from None
             if not math.isfinite(x):
-                raise DataFileError(f"{name}: line {lineno}: {cname}: expected a finite number, got {cell!r}")
+                raise DataFileError(
+                    f"{name}: line {lineno}: {cname}: expected a finite number, got {cell!r}"
+                )
             if x < 0 and cname == "amplitude_m":
                 # forces may scatter below zero (noise around zero); amplitudes may not
-                raise DataFileError(f"{name}: line {lineno}: {cname}: expected a value >= 0, got {cell!r}")
+                raise DataFileError(
+                    f"{name}: line {lineno}: {cname}: expected a value >= 0, got {cell!r}"
+                )
             out.append(x)
     if len(amp) < 3 or len(set(amp)) < 2:
-        raise DataFileError(f"{name}: expected at least 3 data rows with 2 distinct amplitudes, got {len(amp)} rows")
+        raise DataFileError(
+            f"{name}: expected at least 3 data rows with 2 distinct amplitudes, got {len(amp)} rows"
+        )
     a = to_per_contact(np.array(amp), convention)
     return MeasuredCurve(a, np.array(val), quantity, convention, name)
 
@@ -212,7 +241,10 @@ def _deviance_many(a, y, lengths, shape, quantity: str, background: bool, noise:
 
 
 def _deviance_batch(a, Y, L, shape, quantity: str, background: bool, noise: str):
-    """Deviance for many data sets at once: ``Y`` (B, n), ``L`` (B, nL) or (nL,); returns (B, nL)."""
+    """Deviance for many data sets at once.
+
+    ``Y`` (B, n), ``L`` (B, nL) or (nL,); returns (B, nL).
+    """
     L = np.asarray(L, dtype=float)
     if L.ndim == 1:
         L = np.broadcast_to(L, (Y.shape[0], L.size))
@@ -231,7 +263,9 @@ def _deviance_batch(a, Y, L, shape, quantity: str, background: bool, noise: str)
     return n * np.log(np.maximum(rss, 1e-300) / n) + norm
 
 
-def _calibrated_thresholds(a, fitted, scale, shape, quantity, background, noise, length, grid, levels, rng, draws):
+def _calibrated_thresholds(
+    a, fitted, scale, shape, quantity, background, noise, length, grid, levels, rng, draws
+):
     """Likelihood-ratio thresholds calibrated by a parametric bootstrap from the fitted model.
 
     Simulates ``draws`` data sets from the fit with the fitted noise
@@ -244,18 +278,27 @@ def _calibrated_thresholds(a, fitted, scale, shape, quantity, background, noise,
     """
     n = a.size
     e = rng.standard_normal((draws, n))
-    Y = fitted[None, :] * (1.0 + scale * e) if noise == "proportional" else fitted[None, :] + scale * e
+    Y = (
+        fitted[None, :] * (1.0 + scale * e)
+        if noise == "proportional"
+        else fitted[None, :] + scale * e
+    )
     dev = _deviance_batch(a, Y, grid, shape, quantity, background, noise)
     i = np.clip(np.argmin(dev, axis=1), 1, grid.size - 2)
     u = np.linspace(0.0, 1.0, 41)
-    lnL = np.log(grid[i - 1])[:, None] + u[None, :] * (np.log(grid[i + 1]) - np.log(grid[i - 1]))[:, None]
+    lnL = (
+        np.log(grid[i - 1])[:, None]
+        + u[None, :] * (np.log(grid[i + 1]) - np.log(grid[i - 1]))[:, None]
+    )
     dl = _deviance_batch(a, Y, np.exp(lnL), shape, quantity, background, noise)
     j = np.clip(np.argmin(dl, axis=1), 1, u.size - 2)
     rows = np.arange(draws)
     d0, d1, d2 = dl[rows, j - 1], dl[rows, j], dl[rows, j + 1]
     curv = d0 - 2 * d1 + d2
     dmin = np.where(curv > 0, d1 - (d2 - d0) ** 2 / (8 * np.where(curv > 0, curv, 1.0)), d1)
-    d_true = _deviance_batch(a, Y, np.full((draws, 1), length), shape, quantity, background, noise)[:, 0]
+    d_true = _deviance_batch(a, Y, np.full((draws, 1), length), shape, quantity, background, noise)[
+        :, 0
+    ]
     lam = np.maximum(d_true - np.minimum(dmin, d_true), 0.0)
     return [float(np.quantile(lam, lev)) for lev in levels]
 
@@ -267,7 +310,10 @@ def _deviance(a, y, length: float, shape, quantity: str, background: bool, noise
 
 
 def _best_length(a, y, quantity, shape, background, grid, noise):
-    """Global grid scan of the deviance profile, then a bounded refinement; returns (L, dev_grid)."""
+    """Global grid scan of the deviance profile, then a bounded refinement.
+
+    Returns (L, dev_grid).
+    """
     from scipy.optimize import minimize_scalar
 
     dev = _deviance_many(a, y, grid, shape, quantity, background, noise)[0]
@@ -285,7 +331,10 @@ def _best_length(a, y, quantity, shape, background, grid, noise):
 
 
 def _profile_interval(a, y, shape, quantity, background, noise, grid, dev, length, thresh):
-    """Hull of {L : D(L) <= thresh} (edges by bisection in ln L) and whether both edges are inside the grid."""
+    """Hull of {L : D(L) <= thresh}.
+
+    Edges by bisection in ln L; also whether both edges are inside the grid.
+    """
     from scipy.optimize import brentq
 
     def prof(t):
@@ -319,8 +368,17 @@ NOISE_MODELS = ("additive", "proportional")
 COVERAGE_MIN_POINTS = 20
 
 
-def _fit_one(curve: MeasuredCurve, model: str, background: bool, n_grid: int, n_boot: int, rng, noise: str,
-             interval: str = "auto", draws: int = 60) -> dict:
+def _fit_one(
+    curve: MeasuredCurve,
+    model: str,
+    background: bool,
+    n_grid: int,
+    n_boot: int,
+    rng,
+    noise: str,
+    interval: str = "auto",
+    draws: int = 60,
+) -> dict:
     from scipy.special import fdtri
 
     shape = SHAPES.get(model, "model")
@@ -341,16 +399,31 @@ def _fit_one(curve: MeasuredCurve, model: str, background: bool, n_grid: int, n_
         if method == "calibrated":
             fitted = amp * shape(a / length, curve.quantity) + bg
             scale = math.sqrt(rss_min / dof)  # relative sd (proportional) or sd (additive)
-            lr = _calibrated_thresholds(a, fitted, scale, shape, curve.quantity, background, noise, length, grid,
-                                        LEVELS, rng, draws)
+            lr = _calibrated_thresholds(
+                a,
+                fitted,
+                scale,
+                shape,
+                curve.quantity,
+                background,
+                noise,
+                length,
+                grid,
+                LEVELS,
+                rng,
+                draws,
+            )
         for k, level in enumerate(LEVELS):
             if method == "calibrated":
                 thresh = dev_min + lr[k]
             else:
-                # profile likelihood with the noise scale estimated: D <= D_min + n ln(1 + F_{1,dof}/dof)
-                # (for additive noise exactly RSS <= RSS_min (1 + F/dof), the F-test set of a linear model)
+                # profile likelihood with the noise scale estimated: D <= D_min
+                # + n ln(1 + F_{1,dof}/dof) (for additive noise exactly RSS <=
+                # RSS_min (1 + F/dof), the F-test set of a linear model)
                 thresh = dev_min + n * math.log1p(fdtri(1, dof, level) / dof)
-            lo_L, hi_L, ok = _profile_interval(a, y, shape, curve.quantity, background, noise, grid, dev, length, thresh)
+            lo_L, hi_L, ok = _profile_interval(
+                a, y, shape, curve.quantity, background, noise, grid, dev, length, thresh
+            )
             intervals.append([lo_L, hi_L])
             bounded = bounded and ok
         if n_boot > 0:
@@ -359,11 +432,20 @@ def _fit_one(curve: MeasuredCurve, model: str, background: bool, n_grid: int, n_
             fitted = amp * shape(a / length, curve.quantity) + bg
             resid = y - fitted
             coarse = np.geomspace(lo, hi, 61)
-            boots = np.array([
-                _best_length(a, fitted + resid * rng.choice((-1.0, 1.0), a.size), curve.quantity, shape, background,
-                             coarse, noise)[0]
-                for _ in range(n_boot)
-            ])
+            boots = np.array(
+                [
+                    _best_length(
+                        a,
+                        fitted + resid * rng.choice((-1.0, 1.0), a.size),
+                        curve.quantity,
+                        shape,
+                        background,
+                        coarse,
+                        noise,
+                    )[0]
+                    for _ in range(n_boot)
+                ]
+            )
             b_lo, b_hi = np.percentile(boots, [15.87, 84.13])
             intervals[0] = [min(intervals[0][0], b_lo), max(intervals[0][1], b_hi)]
             bounded = bounded and b_lo > coarse[1] and b_hi < coarse[-2]
@@ -464,12 +546,23 @@ def fit_length(
         # the model choice needs only the likelihoods: the (costly) calibrated interval is
         # computed for the chosen model alone
         first = "profile" if interval == "auto" and len(names) > 1 else interval
-        cands = {m: _fit_one(curve, m, background, n_grid, n_boot, gen, noise, first, calibration_draws)
-                 for m in names}
+        cands = {
+            m: _fit_one(curve, m, background, n_grid, n_boot, gen, noise, first, calibration_draws)
+            for m in names
+        }
         best = min(cands.values(), key=lambda c: c["aic"])
         if first != interval:
-            cands[best["model"]] = best = _fit_one(curve, best["model"], background, n_grid, n_boot, gen, noise,
-                                                   interval, calibration_draws)
+            cands[best["model"]] = best = _fit_one(
+                curve,
+                best["model"],
+                background,
+                n_grid,
+                n_boot,
+                gen,
+                noise,
+                interval,
+                calibration_draws,
+            )
     q = curve.quantity
     force0 = math.sqrt(best["amplitude"]) if q == "force_sq" else best["amplitude"]
     # the stiffness curve under proportional noise: the profile (F) form undercovers there
@@ -483,16 +576,24 @@ def fit_length(
         length_interval_m=best["length_interval_m"],
         length_interval_95_m=best["length_interval_95_m"],
         interval_levels=list(LEVELS),
-        interval_method=("profile likelihood, " + ("threshold calibrated by a parametric bootstrap"
-                                                   if best["interval_method"] == "calibrated"
-                                                   else "F threshold (noise estimated)")
-                         + (" + wild bootstrap hull" if n_boot else "")),
+        interval_method=(
+            "profile likelihood, "
+            + (
+                "threshold calibrated by a parametric bootstrap"
+                if best["interval_method"] == "calibrated"
+                else "F threshold (noise estimated)"
+            )
+            + (" + wild bootstrap hull" if n_boot else "")
+        ),
         noise_model=noise,
         coverage_tested=tested,
-        coverage_conditions=(f"coverage of the 68 %/95 % intervals tested in tests/macro/test_fit_coverage.py: "
-                             f"profile interval without bootstrap, >= {COVERAGE_MIN_POINTS} amplitudes (0-10 lambda pinning, "
-                             f"0-2 L stiffness), 3 % additive or 10 % proportional noise (stiffness + proportional: "
-                             f"calibrated threshold only)"),
+        coverage_conditions=(
+            f"coverage of the 68 %/95 % intervals tested in tests/macro/test_fit_coverage.py: "
+            "profile interval without bootstrap, >= "
+            f"{COVERAGE_MIN_POINTS} amplitudes (0-10 lambda pinning, "
+            f"0-2 L stiffness), 3 % additive or 10 % proportional noise (stiffness + proportional: "
+            f"calibrated threshold only)"
+        ),
         bounded=best["bounded"],
         model=best["model"],
         residual=best["residual"],
@@ -504,13 +605,22 @@ def fit_length(
         amplitude_convention=CONVENTION_TEXT[curve.convention] + "; length_m is per contact",
         n_points=int(curve.amplitude.size),
         candidates={m: {k: v for k, v in c.items() if k != "model"} for m, c in cands.items()},
-        message=(f"{best['model']}: L = {best['length_m']:.4g} m, 68 % in [{best['length_interval_m'][0]:.3g}, "
-                 f"{best['length_interval_m'][1]:.3g}] m ({noise} noise)"
-                 + ("" if best["bounded"] else " (not identifiable from these data)")),
+        message=(
+            f"{best['model']}: L = {best['length_m']:.4g} m, "
+            f"68 % in [{best['length_interval_m'][0]:.3g}, "
+            f"{best['length_interval_m'][1]:.3g}] m ({noise} noise)"
+            + ("" if best["bounded"] else " (not identifiable from these data)")
+        ),
         weighting="relative" if noise == "proportional" else "none",
-        units={"length_m": "m", "length_std_m": "m", "length_interval_m": "m", "length_interval_95_m": "m",
-               "residual": "1" if noise == "proportional" else ("N^2" if q == "force_sq" else "N"),
-               "force0_N": "N", "background": "N^2" if q == "force_sq" else "N"},
+        units={
+            "length_m": "m",
+            "length_std_m": "m",
+            "length_interval_m": "m",
+            "length_interval_95_m": "m",
+            "residual": "1" if noise == "proportional" else ("N^2" if q == "force_sq" else "N"),
+            "force0_N": "N",
+            "background": "N^2" if q == "force_sq" else "N",
+        },
     )
     aics = sorted(c["aic"] for c in cands.values())
     res.delta_aic = aics[1] - aics[0] if len(aics) > 1 else None
@@ -522,6 +632,11 @@ def fit_length(
     return res
 
 
-def model_curve(model: str, amplitude, length: float, amplitude_coef: float, background: float, quantity: str) -> np.ndarray:
+def model_curve(
+    model: str, amplitude, length: float, amplitude_coef: float, background: float, quantity: str
+) -> np.ndarray:
     """Evaluate a fitted curve ``A shape(a/L) + B`` (for plots)."""
-    return amplitude_coef * SHAPES.get(model, "model")(np.asarray(amplitude, float) / length, quantity) + background
+    return (
+        amplitude_coef * SHAPES.get(model, "model")(np.asarray(amplitude, float) / length, quantity)
+        + background
+    )

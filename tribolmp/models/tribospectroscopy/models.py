@@ -54,7 +54,8 @@ __all__ = [
 CONVENTIONS = ("per-contact", "probe")
 #: Text stating the convention, copied into every output.
 CONVENTION_TEXT = {
-    "per-contact": "amplitude_m is the per-contact amplitude a = dl/4 (dl = peak-to-peak change of the probe length)",
+    "per-contact": "amplitude_m is the per-contact amplitude a = dl/4 "
+                   "(dl = peak-to-peak change of the probe length)",
     "probe": "amplitude_m is the probe end-face amplitude dl/2 = 2a (a = per-contact amplitude)",
 }
 
@@ -95,7 +96,12 @@ def _h(c: np.ndarray) -> np.ndarray:
     out[~big] = (1.0 - 2.0 * z) * ive(0, z) + 2.0 * z * ive(1, z)
     u = 1.0 / c[big] ** 2
     # -sqrt(2/pi) c^-3 sum_n ((3/2)_n)^2 / n! (2/c^2)^n
-    out[big] = -np.sqrt(2.0 / np.pi) * u * np.sqrt(u) * (1.0 + u * (4.5 + u * (225.0 / 8.0 + u * 229.6875)))
+    out[big] = (
+        -np.sqrt(2.0 / np.pi)
+        * u
+        * np.sqrt(u)
+        * (1.0 + u * (4.5 + u * (225.0 / 8.0 + u * 229.6875)))
+    )
     return out
 
 
@@ -184,7 +190,9 @@ def pinning_shape_fast(s) -> np.ndarray:
     return out
 
 
-def pinning_force_sq(a, correlation_length: float, force0: float, background_sq: float = 0.0) -> np.ndarray:
+def pinning_force_sq(
+    a, correlation_length: float, force0: float, background_sq: float = 0.0
+) -> np.ndarray:
     """Squared friction force ``F^2(a) = F0^2 G(a / lambda) + B`` of the pinning model (N^2).
 
     Parameters
@@ -211,7 +219,7 @@ def shakedown_limit(mu_n: float, stiffness: float) -> float:
 
 
 def shakedown_force(a, mu_n: float, stiffness: float) -> np.ndarray:
-    """Static friction force of the two contacts under oscillation (N).
+    """Return the static friction force (N) of the two contacts under oscillation.
 
     ``F_s = 2 mu N max(0, 1 - k a / mu N)`` (PHYSICS.md section 5).
 

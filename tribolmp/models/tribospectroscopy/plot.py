@@ -35,7 +35,12 @@ def plot_fit(curve: MeasuredCurve, fit, path: str | Path, *, title: str = "") ->
     for name, c in fit.candidates.items():
         y = model_curve(name, a, c["length_m"], c["amplitude"], c["background"], q)
         style = "-" if name == fit.model else "--"
-        ax.plot(a * 1e6, y, style, label=f"{name}: L = {c['length_m'] * 1e9:.1f} ± {c['length_std_m'] * 1e9:.1f} nm")
+        ax.plot(
+            a * 1e6,
+            y,
+            style,
+            label=f"{name}: L = {c['length_m'] * 1e9:.1f} ± {c['length_std_m'] * 1e9:.1f} nm",
+        )
     ax.set_xlabel("amplitude per contact a = Δl/4 (µm)")
     top = ax.secondary_xaxis("top", functions=(lambda x: 2.0 * x, lambda x: 0.5 * x))
     top.set_xlabel("probe amplitude Δl/2 (µm)", fontsize=8)
