@@ -28,7 +28,7 @@ RATES = {"diffusion_m2_s": 2e-12, "transfer_rate": 1e-3, "wear_rate": 0.5, "deta
 
 
 def test_params_from_rates_mapping():
-    """The spectrum's plateaus and crossovers against the block picture and the measured coefficients.
+    """Check the spectrum's plateaus and crossovers: block picture and measured coefficients.
 
     Checked through the stationary spectrum of :mod:`spectra` (not the mapping's own formulas):
     the high-k plateau of the legacy mapping must be one block's height at the block scale,
@@ -36,7 +36,7 @@ def test_params_from_rates_mapping():
     assumed D = l^2/(2 d tau)); the low-k plateau is l^3 nu_z / (2 mu) by the noise convention
     <f f> = 2 Dz; with the C1 coefficients the crossovers are the measured ones.
     """
-    l = 2.5e-9
+    step = 2.5e-9
     big_k, small_k = 1e14, 1e-3  # far beyond both crossovers (k1 = 5e5, k2 ~ 1e6 1/m here)
     for dim in (1, 2):
         p = params_from_rates(RATES, dim=dim, n=64)
@@ -44,33 +44,59 @@ def test_params_from_rates_mapping():
         hi = float(spectra.stationary_psd(np.array([big_k]), **kw)[0])
         lo = float(spectra.stationary_psd(np.array([small_k]), **kw)[0])
         # 2D: the slab thickness defaults to one step length, so the 2D plateau is w l^3 = l^4.
-        assert hi == pytest.approx(l ** (dim + 2), rel=1e-6)
-        assert lo == pytest.approx(l ** (dim + 2) * (3.0 + 1.0) / (2 * 0.5), rel=1e-6)
+        assert hi == pytest.approx(step ** (dim + 2), rel=1e-6)
+        assert lo == pytest.approx(step ** (dim + 2) * (3.0 + 1.0) / (2 * 0.5), rel=1e-6)
         assert p.d0 == 2e-12 and p.mu == 0.5
     # The transfer rate is turned into a frequency at the MCA's velocity, never the part's.
-    r = params_from_rates({"transfer_rate": 2e-3, "wear_rate": 0.0, "diffusion_m2_s": 1e-12, "step_length_m": l,
-                           "sliding_velocity_m_s": 0.5}, n=8, duration=1.0)
-    assert r.dz == pytest.approx(l**3 * 1e-3 / 2) and r.mu == 0.0
+    r = params_from_rates(
+        {
+            "transfer_rate": 2e-3,
+            "wear_rate": 0.0,
+            "diffusion_m2_s": 1e-12,
+            "step_length_m": step,
+            "sliding_velocity_m_s": 0.5,
+        },
+        n=8,
+        duration=1.0,
+    )
+    assert r.dz == pytest.approx(step**3 * 1e-3 / 2) and r.mu == 0.0
     # D0 = 0 is a value (no diffusion), not a missing number replaced by a random-walk guess
     # (old code: `_rate(...) or l^2/(2 d tau)`): the legacy flux noise l^3 D0 vanishes with it.
     z = params_from_rates({**RATES, "diffusion_m2_s": 0.0})
     assert z.d0 == 0.0 and z.dx_noise == 0.0
     # With a measured flux noise, D0 = 0 has no stationary high-k spectrum: an error, not a guess.
     with pytest.raises(ParameterError, match="rates.d0_m2_s"):
-        params_from_rates({"mu_per_s": 1.0, "d0_m2_s": 0.0, "dz": 1e-30, "dx_l2": 1e-40, "sliding_velocity_m_s": 1.0})
+        params_from_rates(
+            {
+                "mu_per_s": 1.0,
+                "d0_m2_s": 0.0,
+                "dz": 1e-30,
+                "dx_l2": 1e-40,
+                "sliding_velocity_m_s": 1.0,
+            }
+        )
     with pytest.raises(ParameterError, match=r"missing \['d0_m2_s', 'dx_l2'\]"):
         params_from_rates({k: v for k, v in RATES.items() if k != "diffusion_m2_s"})
-    # Measured C1 coefficients set the shape: the crossovers of the spectrum are sqrt(mu/D0), sqrt(Dz/Dx l^2).
-    c1 = {"mu_per_s": 1e3, "d0_m2_s": 1e-9, "dz": 1e-24, "dx_l2": 1e-40, "sliding_velocity_m_s": 5.0}
+    # Measured C1 coefficients set the shape: the crossovers of the spectrum
+    # are sqrt(mu/D0), sqrt(Dz/Dx l^2).
+    c1 = {
+        "mu_per_s": 1e3,
+        "d0_m2_s": 1e-9,
+        "dz": 1e-24,
+        "dx_l2": 1e-40,
+        "sliding_velocity_m_s": 5.0,
+    }
     q = params_from_rates(c1, dim=1, n=64, dx=1e-7)
     k = np.geomspace(1e2, 1e10, 4001)
     s = spectra.stationary_psd(k, **q.theory_kwargs())
     slope = np.gradient(np.log(s), np.log(k))
-    # Half-way crossings of the log slope (0 -> -2 near k1 = 1e6, -2 -> 0 near k2 = 1e8 1/m); mid-way the
-    # slope is -2 up to 4 (k1/k)^2 = 0.04:
+    # Half-way crossings of the log slope (0 -> -2 near k1 = 1e6, -2 -> 0
+    # near k2 = 1e8 1/m); mid-way the slope is -2 up to 4 (k1/k)^2 = 0.04:
     k1, k2 = math.sqrt(1e3 / 1e-9), math.sqrt(1e-24 / 1e-40)
     assert k[np.argmin(np.abs(slope[k < math.sqrt(k1 * k2)] + 1.0))] == pytest.approx(k1, rel=0.02)
-    assert k[k > math.sqrt(k1 * k2)][np.argmin(np.abs(slope[k > math.sqrt(k1 * k2)] + 1.0))] == pytest.approx(k2, rel=0.02)
+    assert k[k > math.sqrt(k1 * k2)][
+        np.argmin(np.abs(slope[k > math.sqrt(k1 * k2)] + 1.0))
+    ] == pytest.approx(k2, rel=0.02)
     assert slope[np.argmin(np.abs(k - math.sqrt(k1 * k2)))] == pytest.approx(-2.0, abs=0.05)
 
 
@@ -79,10 +105,22 @@ def test_params_from_rates_mapping():
     [
         ({"step_time_s": 1e-9, "detachment_rate": 1.0, "sliding_velocity_m_s": 1.0}, "missing"),
         ({**RATES, "diffusion_m2_s": -1.0}, "rates.diffusion_m2_s"),
-        ({**{k: v for k, v in RATES.items() if not k.endswith("tachment_rate")}, "sliding_velocity_m_s": None},
-         "rates.sliding_velocity_m_s"),
-        ({"step_length_m": 1e-9, "diffusion_m2_s": 1e-12, "wear_rate": 1.0, "sliding_velocity_m_s": 1.0},
-         r"missing \['dz'\]"),
+        (
+            {
+                **{k: v for k, v in RATES.items() if not k.endswith("tachment_rate")},
+                "sliding_velocity_m_s": None,
+            },
+            "rates.sliding_velocity_m_s",
+        ),
+        (
+            {
+                "step_length_m": 1e-9,
+                "diffusion_m2_s": 1e-12,
+                "wear_rate": 1.0,
+                "sliding_velocity_m_s": 1.0,
+            },
+            r"missing \['dz'\]",
+        ),
         ({**RATES, "wear_rate": float("nan")}, "rates.wear_rate"),
     ],
 )
@@ -108,7 +146,9 @@ def test_params_from_scene_direct_and_rates():
             "kinematics": {"sliding_velocity": 0.1}}
     s = params_from_scene(parse_scene(data))
     # The transfer frequency is taken at the MCA's 5 m/s, not the part's 0.1 m/s (issue 15).
-    assert s.d0 == 3e-12 and s.dz == pytest.approx(2e-9**3 * 5e-2 / 2 * (2e-9 if s.dim == 2 else 1.0))
+    assert s.d0 == 3e-12 and s.dz == pytest.approx(
+        2e-9**3 * 5e-2 / 2 * (2e-9 if s.dim == 2 else 1.0)
+    )
 
 
 @pytest.mark.parametrize("shape", [(64,), (16, 24)])
@@ -132,7 +172,8 @@ def test_ascii_grid_is_esri_layout(tmp_path):
     path = save_ascii_grid(tmp_path / "g.asc", h, 1e-6)
     lines = path.read_text().splitlines()
     assert lines[0] == "ncols 3" and lines[1] == "nrows 2" and lines[4].startswith("cellsize 1e-06")
-    # First data row is y = 0 (h[0]), as instruments export text grids and SurfaceTopography reads them.
+    # First data row is y = 0 (h[0]), as instruments export text grids and
+    # SurfaceTopography reads them.
     assert [float(v) for v in lines[6].split()] == [0.0, 1.0, 2.0]
 
 
@@ -149,10 +190,39 @@ def test_height_map_errors(tmp_path):
 
 
 def test_cli_evolve_json_contract(cli, tmp_path):
-    args = ["topography", "evolve", "--dim", "1", "--n", "128", "--dx", "1e-8", "--d0", "1e-12",
-            "--dx-noise", "2.5e-20", "--dz", "5.6e-20", "--mu", "10", "--l", "5e-8", "--dt", "0.05",
-            "--steps", "20", "--replicas", "100", "--seed", "7", "--scheme", "exact", "--out", str(tmp_path / "o"),
-            "--json"]
+    args = [
+        "topography",
+        "evolve",
+        "--dim",
+        "1",
+        "--n",
+        "128",
+        "--dx",
+        "1e-8",
+        "--d0",
+        "1e-12",
+        "--dx-noise",
+        "2.5e-20",
+        "--dz",
+        "5.6e-20",
+        "--mu",
+        "10",
+        "--l",
+        "5e-8",
+        "--dt",
+        "0.05",
+        "--steps",
+        "20",
+        "--replicas",
+        "100",
+        "--seed",
+        "7",
+        "--scheme",
+        "exact",
+        "--out",
+        str(tmp_path / "o"),
+        "--json",
+    ]
     res = cli(*args)
     assert res.returncode == 0, res.stderr
     out = res.json()
@@ -163,9 +233,12 @@ def test_cli_evolve_json_contract(cli, tmp_path):
     ratio = np.array(out["psd"]) / np.array(out["psd_theory"])
     # 100 replicas: 63 complex modes, each mean of 100 Exp(1) (sd 10 %): all within 5 sd.
     assert np.all(np.abs(ratio[:-1] - 1) < 0.5) and abs(ratio.mean() - 1) < 0.04
-    # Normalisation <h^2> = (1/L) sum S: the theory sum equals the theoretical Rq^2 (k = 0 excluded).
+    # Normalisation <h^2> = (1/L) sum S: the theory sum equals the
+    # theoretical Rq^2 (k = 0 excluded).
     L = 128e-8
-    assert spectra.mean_square_from_psd(k, np.array(out["psd_theory"]), L) == pytest.approx(out["rq_theory_m"] ** 2)
+    assert spectra.mean_square_from_psd(k, np.array(out["psd_theory"]), L) == pytest.approx(
+        out["rq_theory_m"] ** 2
+    )
     h, px = load_height_map(tmp_path / "o" / "height_map.npy")
     assert h.shape == (128,) and px == 1e-8
     assert (tmp_path / "o" / "height_map.xyz").exists()
@@ -174,9 +247,35 @@ def test_cli_evolve_json_contract(cli, tmp_path):
 
 
 def test_cli_2d_and_euler(cli):
-    res = cli("topography", "evolve", "--dim", "2", "--n", "32", "--dx", "1", "--d0", "1", "--dx-noise", "1",
-              "--dz", "1", "--mu", "0.01", "--l", "0.1", "--dt", "0.1", "--steps", "30", "--scheme", "euler",
-              "--seed", "1", "--json")
+    res = cli(
+        "topography",
+        "evolve",
+        "--dim",
+        "2",
+        "--n",
+        "32",
+        "--dx",
+        "1",
+        "--d0",
+        "1",
+        "--dx-noise",
+        "1",
+        "--dz",
+        "1",
+        "--mu",
+        "0.01",
+        "--l",
+        "0.1",
+        "--dt",
+        "0.1",
+        "--steps",
+        "30",
+        "--scheme",
+        "euler",
+        "--seed",
+        "1",
+        "--json",
+    )
     assert res.returncode == 0, res.stderr
     out = res.json()
     assert out["operator"] == "lattice" and len(out["k"]) == 16
@@ -194,7 +293,10 @@ def test_cli_2d_and_euler(cli):
         (["--n", "2"], ["n: expected", "[4,"]),
         (["--n", "9"], ["n: expected an even number"]),
         (["--dim", "3"], ["dim: expected"]),
-        (["--scheme", "euler", "--dt", "1"], ["dt: expected a step below the explicit stability limit"]),
+        (
+            ["--scheme", "euler", "--dt", "1"],
+            ["dt: expected a step below the explicit stability limit"],
+        ),
         (["--scheme", "rk4"], ["scheme: expected"]),
         (["--replicas", "0"], ["replicas: expected"]),
         (["--steps", "abc"], ["--steps"]),

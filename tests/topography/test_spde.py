@@ -19,7 +19,13 @@ import numpy as np
 import pytest
 
 from tribolmp.errors import ParameterError
-from tribolmp.models.topography import TopographyParams, euler_dt_limit, evolve, expected_periodogram, spectra
+from tribolmp.models.topography import (
+    TopographyParams,
+    euler_dt_limit,
+    evolve,
+    expected_periodogram,
+    spectra,
+)
 from tribolmp.models.topography.spde import mode_ratios
 
 ALPHA = 1e-3
@@ -27,13 +33,28 @@ ALPHA = 1e-3
 
 def base(**kw):
     """Return a 1D problem with both plateaus and a decade of k^-2 in between."""
-    p = dict(dim=1, grid_points=256, pixel_size=1.0, d0=1.0, dx_noise=1.0, dz=1.0, mu=2e-3, l=0.1, dt=50.0, steps=20)
+    p = dict(
+        dim=1,
+        grid_points=256,
+        pixel_size=1.0,
+        d0=1.0,
+        dx_noise=1.0,
+        dz=1.0,
+        mu=2e-3,
+        l=0.1,
+        dt=50.0,
+        steps=20,
+    )
     p.update(kw)
     return TopographyParams(**p)
 
 
 def check(p, res, t=None, *, lattice=False, bands=8, expected=None):
-    exp = expected if expected is not None else expected_periodogram(p, p.duration if t is None else t, lattice=lattice)
+    exp = (
+        expected
+        if expected is not None
+        else expected_periodogram(p, p.duration if t is None else t, lattice=lattice)
+    )
     test = spectra.psd_consistency(mode_ratios(p, res.h, exp), bands=bands, alpha=ALPHA)
     return test
 
@@ -54,9 +75,13 @@ def test_exact_1d_matches_theory_at_100x_explicit_limit():
     exp0 = expected_periodogram(p, p.duration, lattice=False)
     for bias in (1.03, 0.97, 1.02):
         assert not check(p, res, expected=bias * exp0).passed, bias
-    assert spectra.psd_consistency(mode_ratios(p, res.h, 1.03 * exp0), alpha=ALPHA, pooled=False).passed
+    assert spectra.psd_consistency(
+        mode_ratios(p, res.h, 1.03 * exp0), alpha=ALPHA, pooled=False
+    ).passed
     # The Euler scheme refuses this step with a one-line error naming dt.
-    with pytest.raises(ParameterError, match="dt: expected a step below the explicit stability limit"):
+    with pytest.raises(
+        ParameterError, match="dt: expected a step below the explicit stability limit"
+    ):
         evolve(p, rng=np.random.default_rng(1), scheme="euler")
 
 
@@ -102,14 +127,21 @@ def test_real_fft_modes_have_the_right_variance():
     res = evolve(p, rng=np.random.default_rng(5), replicas=R)
     hk = np.fft.rfft(res.h, axis=-1)
     var_theory = expected_periodogram(p, p.duration, lattice=False) * p.grid_points / p.pixel_size
-    # A real Gaussian mode: mean of R squared values / variance ~ Gamma(R/2, 2/R): sd = sqrt(2/R) = 1 %.
+    # A real Gaussian mode: mean of R squared values / variance ~ Gamma(R/2,
+    # 2/R): sd = sqrt(2/R) = 1 %.
     for m in (0, p.grid_points // 2):
         assert abs(hk[:, m].imag).max() < 1e-9 * abs(hk[:, m].real).max()
-        assert np.mean(hk[:, m].real ** 2) / var_theory[m] == pytest.approx(1.0, abs=5 * math.sqrt(2 / R))
+        assert np.mean(hk[:, m].real ** 2) / var_theory[m] == pytest.approx(
+            1.0, abs=5 * math.sqrt(2 / R)
+        )
     # Complex modes: Re and Im independent with half the variance each (sd sqrt(2/R)).
     m = 3
-    assert np.mean(hk[:, m].real ** 2) / (var_theory[m] / 2) == pytest.approx(1.0, abs=5 * math.sqrt(2 / R))
-    assert np.mean(hk[:, m].imag ** 2) / (var_theory[m] / 2) == pytest.approx(1.0, abs=5 * math.sqrt(2 / R))
+    assert np.mean(hk[:, m].real ** 2) / (var_theory[m] / 2) == pytest.approx(
+        1.0, abs=5 * math.sqrt(2 / R)
+    )
+    assert np.mean(hk[:, m].imag ** 2) / (var_theory[m] / 2) == pytest.approx(
+        1.0, abs=5 * math.sqrt(2 / R)
+    )
 
 
 def test_2d_hermitian_columns():
@@ -167,7 +199,9 @@ def test_euler_small_step_converges_to_lattice_theory():
     # ~ 1 % at Nyquist and less below (PHYSICS.md section 4).
     p = base(grid_points=32, mu=0.05, dt=0.005, steps=1600)
     kmag = np.abs(2 * np.pi * np.fft.rfftfreq(p.grid_points, p.pixel_size))
-    exp_euler = spectra.euler_psd(kmag, math.inf, p.dt, lattice_dx=p.pixel_size, **p.theory_kwargs())
+    exp_euler = spectra.euler_psd(
+        kmag, math.inf, p.dt, lattice_dx=p.pixel_size, **p.theory_kwargs()
+    )
     exp_exact = spectra.stationary_psd(kmag, lattice_dx=p.pixel_size, **p.theory_kwargs())
     bias = exp_euler / exp_exact - 1
     gamma_max = p.mu + 4 * p.d0 / p.pixel_size**2
@@ -178,7 +212,10 @@ def test_euler_small_step_converges_to_lattice_theory():
 
 
 def rq2_rel_sd(p, t, replicas):
-    """Relative sampling sd of the replica-mean Rq^2: low-k modes dominate, so it is not 1/sqrt(points)."""
+    """Relative sampling sd of the replica-mean Rq^2.
+
+    Low-k modes dominate, so it is not 1/sqrt(points).
+    """
     e = expected_periodogram(p, t, lattice=False)[..., 1:]
     w = np.full(e.shape, 2.0)
     w[..., -1] = 1.0
@@ -190,7 +227,9 @@ def rq2_rel_sd(p, t, replicas):
 @pytest.mark.parametrize("dim", [1, 2])
 def test_conserved_noise_conserves_mass(scheme, dim, rng):
     n = 32 if dim == 1 else 16
-    p = base(dim=dim, grid_points=n, dz=0.0, mu=0.0, dt=0.05 if scheme == "euler" else 5.0, steps=50)
+    p = base(
+        dim=dim, grid_points=n, dz=0.0, mu=0.0, dt=0.05 if scheme == "euler" else 5.0, steps=50
+    )
     h0 = rng.normal(0.3, 1.0, size=p.shape)
     res = evolve(p, rng=np.random.default_rng(11), h0=h0, scheme=scheme, replicas=4)
     means = res.h.reshape(4, -1).mean(axis=1)
@@ -199,14 +238,15 @@ def test_conserved_noise_conserves_mass(scheme, dim, rng):
     np.testing.assert_allclose(means, h0.mean(), rtol=0, atol=1e-12)
     assert np.abs(res.h - h0).max() > 0.1  # the surface did change
     # With transfer noise the mass does wander (the check can fail).
-    res_z = evolve(replace(p, dz=1.0), rng=np.random.default_rng(11), h0=h0, scheme=scheme, replicas=4)
+    res_z = evolve(
+        replace(p, dz=1.0), rng=np.random.default_rng(11), h0=h0, scheme=scheme, replicas=4
+    )
     assert np.abs(res_z.h.reshape(4, -1).mean(axis=1) - h0.mean()).max() > 1e-3
 
 
 def test_hard_case_mu_zero_roughness_grows():
     p = base(mu=0.0, dt=10.0, steps=100)
     res = evolve(p, rng=np.random.default_rng(12), replicas=200, record_steps=[1, 10, 100])
-    rq = [h["rq"] for h in res.history]
     rq_th = [h["rq_theory"] for h in res.history]
     assert rq_th[0] < rq_th[1] < rq_th[2]
     # Edwards-Wilkinson growth in 1D: Rq^2 ~ t^(1/2) while the correlation length
@@ -219,7 +259,9 @@ def test_hard_case_mu_zero_roughness_grows():
     assert check(p, res).passed
     # The mean height (k = 0) is a random walk: Var = 2 Dz t / L.
     var_mean = np.var(res.h.mean(axis=1))
-    assert var_mean == pytest.approx(2 * p.dz * p.duration / p.length, rel=0.35)  # 200 samples: sd 10 %
+    assert var_mean == pytest.approx(
+        2 * p.dz * p.duration / p.length, rel=0.35
+    )  # 200 samples: sd 10 %
 
 
 def test_hard_case_d0_zero():
@@ -299,7 +341,10 @@ def test_bad_h0_and_replicas():
 
 @pytest.mark.parametrize("dim", [1, 2])
 def test_deterministic_relaxation_is_exact(dim, rng):
-    """Without noise each mode decays as exp(-gamma t) (exact) or (1 - gamma dt)^n (Euler, lattice)."""
+    """Without noise each mode decays as exp(-gamma t) or (1 - gamma dt)^n.
+
+    Exact scheme: exp(-gamma t); Euler on the lattice: (1 - gamma dt)^n.
+    """
     n = 64 if dim == 1 else 16
     p = base(dim=dim, grid_points=n, dz=0.0, dx_noise=0.0, mu=0.03, dt=0.1, steps=40)
     h0 = rng.normal(size=p.shape)
@@ -308,7 +353,9 @@ def test_deterministic_relaxation_is_exact(dim, rng):
     hk0 = np.fft.fftn(h0)
     for scheme, operator in (("exact", "spectral"), ("exact", "lattice"), ("euler", "lattice")):
         q = replace(p, operator=operator)
-        k2 = sum(spectra.lattice_k2(k, p.pixel_size) if operator == "lattice" else k**2 for k in kgrid)
+        k2 = sum(
+            spectra.lattice_k2(k, p.pixel_size) if operator == "lattice" else k**2 for k in kgrid
+        )
         gamma = p.mu + p.d0 * k2
         factor = np.exp(-gamma * p.duration) if scheme == "exact" else (1 - gamma * p.dt) ** p.steps
         expected = np.fft.ifftn(hk0 * factor).real
@@ -328,8 +375,17 @@ def test_euler_with_correlated_noise():
     exp_euler = spectra.euler_psd(kmag, p.steps, p.dt, lattice_dx=p.pixel_size, **p.theory_kwargs())
     assert check(p, res, expected=exp_euler).passed
     # Without the F~ filter the high-k power would be e^(k^2 lc^2 / 2) ~ 1e8 x larger at Nyquist.
-    assert not check(p, res, expected=spectra.euler_psd(kmag, p.steps, p.dt, lattice_dx=p.pixel_size,
-                                                        **{**p.theory_kwargs(), "correlation_length": 0.0})).passed
+    assert not check(
+        p,
+        res,
+        expected=spectra.euler_psd(
+            kmag,
+            p.steps,
+            p.dt,
+            lattice_dx=p.pixel_size,
+            **{**p.theory_kwargs(), "correlation_length": 0.0},
+        ),
+    ).passed
 
 
 def test_make_stepper_matches_evolve():

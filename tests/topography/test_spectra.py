@@ -26,7 +26,10 @@ def test_stationary_psd_plateaus_slope_and_crossovers():
     ss = spectra.stationary_psd(kk, **KW)
     slope = np.diff(np.log(ss)) / np.diff(np.log(kk))
     assert slope[0] == pytest.approx(-2.0, abs=1e-5)
-    assert spectra.crossover_wavenumbers(d0=0.0, dx_noise=0.0, dz=1.0, mu=1.0, l=1.0) == (math.inf, math.inf)
+    assert spectra.crossover_wavenumbers(d0=0.0, dx_noise=0.0, dz=1.0, mu=1.0, l=1.0) == (
+        math.inf,
+        math.inf,
+    )
 
 
 def test_transient_limits_and_relaxation_time():
@@ -70,7 +73,10 @@ def test_euler_psd_limits():
     np.testing.assert_allclose(spectra.euler_psd(k, math.inf, dt, **kw),
                                spectra.stationary_psd(k, **kw) / (1 - gamma * dt / 2), rtol=1e-12)
     # One step from flat: exactly the noise increment 2 I dt.
-    np.testing.assert_allclose(spectra.euler_psd(k, 1, dt, **kw), 2 * (kw["dz"] + kw["dx_noise"] * kw["l"] ** 2 * k**2) * dt)
+    np.testing.assert_allclose(
+        spectra.euler_psd(k, 1, dt, **kw),
+        2 * (kw["dz"] + kw["dx_noise"] * kw["l"] ** 2 * k**2) * dt,
+    )
 
 
 def test_psd_1d_parseval_and_sinusoid(rng):
@@ -78,7 +84,9 @@ def test_psd_1d_parseval_and_sinusoid(rng):
     h = rng.normal(0.2, 1.0, n)
     k, s = spectra.psd_1d(h, dx)
     s0 = spectra.periodogram(h, dx, 1)[0]
-    assert spectra.mean_square_from_psd(k, s, n * dx, s0=s0) == pytest.approx(np.mean(h**2), rel=1e-12)
+    assert spectra.mean_square_from_psd(k, s, n * dx, s0=s0) == pytest.approx(
+        np.mean(h**2), rel=1e-12
+    )
     # A sinusoid of amplitude a at k0 puts L a^2 / 4 at +-k0.
     L = n * dx
     m, a = 5, 0.3
@@ -96,7 +104,9 @@ def test_2d_normalisation_radial_and_line_scans(rng):
     w = np.full(s.shape[-2:], 2.0)
     w[:, 0] = w[:, -1] = 1.0
     # <h^2> = (1/A) sum over the full plane (rfft half-plane with mirror weights).
-    np.testing.assert_allclose((w * s).sum(axis=(-2, -1)) / (n * dx) ** 2, np.mean(h**2, axis=(-2, -1)), rtol=1e-12)
+    np.testing.assert_allclose(
+        (w * s).sum(axis=(-2, -1)) / (n * dx) ** 2, np.mean(h**2, axis=(-2, -1)), rtol=1e-12
+    )
     # Line scans of the surface equal (1/L) sum_ky of its 2D periodogram, exactly.
     k, s_line = spectra.psd_line_scans(h, dx)
     k2, s_line_th = spectra.line_scan_psd_theory(s.mean(axis=0), n, dx)
@@ -117,7 +127,9 @@ def test_line_scan_of_k2_surface_goes_as_k_minus_1():
     n, dx = 1024, 1.0
     kx = 2 * np.pi * np.fft.fftfreq(n, dx)[:, None]
     ky = 2 * np.pi * np.fft.rfftfreq(n, dx)[None, :]
-    kw = dict(d0=1.0, dx_noise=1.0, dz=1.0, mu=1e-6, l=1e-3)  # k1 = 1e-3 < 2 pi/L, k2 = 1000 > pi/dx
+    kw = dict(
+        d0=1.0, dx_noise=1.0, dz=1.0, mu=1e-6, l=1e-3
+    )  # k1 = 1e-3 < 2 pi/L, k2 = 1000 > pi/dx
     s2 = spectra.stationary_psd(np.hypot(kx, ky), **kw)
     k, s_line = spectra.line_scan_psd_theory(s2, n, dx)
     # (1/L) sum_q Dz/(D0 (k^2 + q^2)) over |q| < pi/dx -> (Dz/D0) atan(pi/(k dx)) / (pi k):
@@ -128,7 +140,9 @@ def test_line_scan_of_k2_surface_goes_as_k_minus_1():
     fit = spectra.hurst_fit(k, s_line, kmin=0.06, kmax=0.2, dim=1)
     assert fit.alpha == pytest.approx(1.0, abs=0.05)  # atan factor steepens by < 4 % here
     k_r, s_r, _ = spectra.radial_average(s2, n, dx)
-    assert spectra.hurst_fit(k_r, s_r, kmin=0.06, kmax=1.0, dim=2).alpha == pytest.approx(2.0, abs=0.01)
+    assert spectra.hurst_fit(k_r, s_r, kmin=0.06, kmax=1.0, dim=2).alpha == pytest.approx(
+        2.0, abs=0.01
+    )
 
 
 def test_roughness_of_a_sinusoid():
@@ -162,9 +176,15 @@ def test_hurst_fit_power_law():
 
 
 def test_psd_consistency_false_alarm_rate():
-    """Under the null the test rejects at most ~alpha of the time (here 0 of 200 at alpha = 0.01)."""
+    """Under the null the test rejects at most ~alpha of the time.
+
+    Here 0 of 200 at alpha = 0.01.
+    """
     rng = np.random.default_rng(0)
-    rejections = sum(not spectra.psd_consistency(rng.exponential(size=(4, 400)), alpha=0.01).passed for _ in range(200))
+    rejections = sum(
+        not spectra.psd_consistency(rng.exponential(size=(4, 400)), alpha=0.01).passed
+        for _ in range(200)
+    )
     # Expected <= 2 rejections (Bonferroni is conservative); P(>= 8 | p=0.01) < 1e-3.
     assert rejections < 8
     assert not spectra.psd_consistency(1.2 * rng.exponential(size=(4, 400)), alpha=0.01).passed

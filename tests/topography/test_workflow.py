@@ -19,8 +19,14 @@ def load(name):
 
 
 def check_summary(out: Path, slope_sd: float):
-    for name in ("fig10_topography_spectrum.png", "running_in.png", "fig10_psd.csv", "running_in.csv",
-                 "surface_2d.npy", "surface_2d.json"):
+    for name in (
+        "fig10_topography_spectrum.png",
+        "running_in.png",
+        "fig10_psd.csv",
+        "running_in.csv",
+        "surface_2d.npy",
+        "surface_2d.json",
+    ):
         assert (out / name).stat().st_size > 0, name
     assert (out / "fig10_topography_spectrum.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     s = json.loads((out / "summary.json").read_text())
@@ -28,13 +34,17 @@ def check_summary(out: Path, slope_sd: float):
     # Fitted slope agrees with the analytic curve fitted over the same range, within
     # slope_sd standard errors of the fit.
     assert abs(f["slope_1d"] - f["slope_1d_theory_same_range"]) < slope_sd * f["slope_1d_err"]
-    # Every log bin within 5 sampling sd of theory (~40 bins: P(any > 5 sd) < 1e-4 under the theory).
+    # Every log bin within 5 sampling sd of theory (~40 bins: P(any > 5 sd)
+    # < 1e-4 under the theory).
     assert f["max_logbin_deviation_sd"] < 5
-    # The simulated high-k plateau against the analytic Dx l^2/D0: the theory over the same modes
-    # is within 4 % of the plateau, and the measured mean within 4 sampling sd (~0.2 %) of the theory.
-    # (This replaces low/high == (k2/k1)^2, an algebraic identity of the inputs.)
+    # The simulated high-k plateau against the analytic Dx l^2/D0: the theory over the same
+    # modes is within 4 % of the plateau, and the measured mean within 4 sampling sd (~0.2 %) of
+    # the theory. (This replaces low/high == (k2/k1)^2, an algebraic identity of the inputs.)
     assert f["high_plateau_theory_same_modes_m3"] == pytest.approx(f["high_plateau_m3"], rel=0.04)
-    assert abs(f["high_plateau_measured_m3"] / f["high_plateau_theory_same_modes_m3"] - 1) < 4 * f["high_plateau_sampling_sd"]
+    assert (
+        abs(f["high_plateau_measured_m3"] / f["high_plateau_theory_same_modes_m3"] - 1)
+        < 4 * f["high_plateau_sampling_sd"]
+    )
     r = s["running_in"]
     # Both starts approach the stationary roughness (within 15 %: 8 replicas of a surface
     # whose Rq^2 is dominated by a few low-k modes).

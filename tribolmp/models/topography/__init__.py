@@ -16,7 +16,15 @@ Pure numpy: nothing heavy is imported.
 
 from .io import load_height_map, save_ascii_grid, save_height_map
 from .rates import params_from_rates, params_from_scene
-from .spde import SCHEMES, TopographyParams, euler_dt_limit, evolve, expected_periodogram, make_stepper, solve
+from .spde import (
+    SCHEMES,
+    TopographyParams,
+    euler_dt_limit,
+    evolve,
+    expected_periodogram,
+    make_stepper,
+    solve,
+)
 
 Params = TopographyParams
 

@@ -39,7 +39,10 @@ __all__ = ["save_height_map", "load_height_map", "save_ascii_grid", "read_native
 def _check(h, pixel_size):
     h = np.asarray(h, dtype=float)
     if h.ndim not in (1, 2) or min(h.shape) < 2:
-        raise SurfaceFileError(f"surface height map: expected a 1D or 2D array with >= 2 points per side, got shape {h.shape}")
+        raise SurfaceFileError(
+            "surface height map: expected a 1D or 2D array "
+            f"with >= 2 points per side, got shape {h.shape}"
+        )
     if not np.all(np.isfinite(h)):
         raise SurfaceFileError("surface height map: expected finite heights, got NaN or inf")
     if isinstance(pixel_size, bool) or not isinstance(pixel_size, (int, float)) or not (
@@ -71,15 +74,23 @@ def save_height_map(path, h, pixel_size: float) -> tuple[Path, Path]:
     npy, side = path.with_suffix(".npy"), path.with_suffix(".json")
     npy.parent.mkdir(parents=True, exist_ok=True)
     np.save(npy, h)
-    meta = {"pixel_size_m": pixel_size, "shape": list(h.shape), "units": {"h": "m", "pixel_size_m": "m"},
-            "periodic": True, "format": "tribolmp height map v1"}
+    meta = {
+        "pixel_size_m": pixel_size,
+        "shape": list(h.shape),
+        "units": {"h": "m", "pixel_size_m": "m"},
+        "periodic": True,
+        "format": "tribolmp height map v1",
+    }
     side.write_text(json.dumps(meta, indent=1))
     _write_netcdf_copy(path.with_suffix(".nc"), h, pixel_size)
     return npy, side
 
 
 def _write_netcdf_copy(path: Path, h, pixel_size: float) -> Path | None:
-    """Return the same map as NetCDF for SurfaceTopography/Gwyddion users; skipped without SurfaceTopography."""
+    """Return the same map as NetCDF for SurfaceTopography/Gwyddion users.
+
+    Skipped without SurfaceTopography.
+    """
     try:
         import SurfaceTopography  # noqa: F401
     except ImportError:
@@ -101,7 +112,9 @@ def save_ascii_grid(path, h, pixel_size: float) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     if path.suffix.lower() == ".asc":
         if h.ndim != 2:
-            raise SurfaceFileError(f"{path}: an ESRI .asc grid needs a 2D map, got shape {h.shape}; use .xyz")
+            raise SurfaceFileError(
+                f"{path}: an ESRI .asc grid needs a 2D map, got shape {h.shape}; use .xyz"
+            )
         ny, nx = h.shape
         header = (f"ncols {nx}\nnrows {ny}\nxllcorner 0.0\nyllcorner 0.0\n"
                   f"cellsize {pixel_size!r}\nNODATA_value -9999\n")
@@ -122,7 +135,9 @@ def save_ascii_grid(path, h, pixel_size: float) -> Path:
     return path
 
 
-def load_height_map(path, pixel_size: float | None = None, unit: str | None = None) -> tuple[np.ndarray, float]:
+def load_height_map(
+    path, pixel_size: float | None = None, unit: str | None = None
+) -> tuple[np.ndarray, float]:
     """Read a height map written by :func:`save_height_map` or :func:`save_ascii_grid`.
 
     Parameters
@@ -145,7 +160,9 @@ def load_height_map(path, pixel_size: float | None = None, unit: str | None = No
     return h, px
 
 
-def read_native(path, pixel_size: float | None = None, unit: str | None = None) -> tuple[np.ndarray, float, str, str]:
+def read_native(
+    path, pixel_size: float | None = None, unit: str | None = None
+) -> tuple[np.ndarray, float, str, str]:
     """Read a tribolmp-format height map; returns ``(h [m], pixel_size [m], format, unit_source)``.
 
     ``unit_source`` says where the units and pixel size came from
@@ -160,22 +177,40 @@ def read_native(path, pixel_size: float | None = None, unit: str | None = None) 
                 h = np.load(npy, allow_pickle=False)
             except ValueError:
                 # numpy's "pickled data" text misleads for a file that is simply not .npy.
-                raise SurfaceFileError(f"surface file {npy}: expected a .npy array file (numpy format), got other content") from None
+                raise SurfaceFileError(
+                    f"surface file {npy}: expected a .npy array "
+                    "file (numpy format), got other content"
+                ) from None
             if not isinstance(h, np.ndarray):
                 raise SurfaceFileError(f"{npy}: expected a single .npy array, got an archive")
             meta = json.loads(side.read_text()) if side.exists() else {}
             if "shape" in meta and list(meta["shape"]) != list(h.shape):
-                # The sidecar belongs to another map (or the array was cut): its pixel size would be wrong too.
-                raise SurfaceFileError(f"{side}: expected the shape of {npy.name}, {list(h.shape)}, got {meta['shape']}")
+                # The sidecar belongs to another map (or the array was cut):
+                # its pixel size would be wrong too.
+                raise SurfaceFileError(
+                    f"{side}: expected the shape of {npy.name}, "
+                    f"{list(h.shape)}, got {meta['shape']}"
+                )
             fmt = "tribolmp-npy"
             if pixel_size is not None:
-                pixel, source = pixel_size, "override" if "pixel_size_m" not in meta else "file metadata + pixel size (override)"
+                pixel, source = (
+                    pixel_size,
+                    "override"
+                    if "pixel_size_m" not in meta
+                    else "file metadata + pixel size (override)",
+                )
             elif "pixel_size_m" in meta:
                 pixel, source = meta["pixel_size_m"], "file metadata"
             else:
-                raise SurfaceFileError(f"{npy}: expected a sidecar {side.name} with pixel_size_m or a pixel_size override (m), got none")
+                raise SurfaceFileError(
+                    f"{npy}: expected a sidecar {side.name} with "
+                    "pixel_size_m or a pixel_size override (m), got none"
+                )
             if unit not in (None, "m"):
-                raise SurfaceFileError(f"{npy}: tribolmp .npy heights are in m; unit override expected 'm' or none, got {unit!r}")
+                raise SurfaceFileError(
+                    f"{npy}: tribolmp .npy heights are in m; unit "
+                    f"override expected 'm' or none, got {unit!r}"
+                )
         elif suffix == ".asc":
             h, pixel = _read_asc(path)
             fmt, source = "esri-asc", "file metadata"
@@ -195,7 +230,9 @@ def read_native(path, pixel_size: float | None = None, unit: str | None = None) 
         raise
     except (OSError, ValueError, KeyError, IndexError, json.JSONDecodeError) as exc:
         msg = " ".join(str(exc).split())
-        raise SurfaceFileError(f"{path}: expected a tribolmp height map (.npy + .json, .asc or .xyz), got {msg}") from None
+        raise SurfaceFileError(
+            f"{path}: expected a tribolmp height map (.npy + .json, .asc or .xyz), got {msg}"
+        ) from None
     h, pixel = _check(h, pixel)
     return h, pixel, fmt, source
 
@@ -210,14 +247,21 @@ def _read_asc(path: Path):
         i += 1
     for key in ("ncols", "nrows", "cellsize"):
         if key not in header:
-            raise SurfaceFileError(f"{path}: expected an ESRI grid header with {key}, got keys {sorted(header)}")
+            raise SurfaceFileError(
+                f"{path}: expected an ESRI grid header with {key}, got keys {sorted(header)}"
+            )
     data = np.loadtxt(lines[i:], ndmin=2)
     if data.shape != (int(header["nrows"]), int(header["ncols"])):
-        raise SurfaceFileError(f"{path}: expected {int(header['nrows'])}x{int(header['ncols'])} values, got {data.shape}")
+        raise SurfaceFileError(
+            f"{path}: expected {int(header['nrows'])}x{int(header['ncols'])} "
+            f"values, got {data.shape}"
+        )
     if "nodata_value" in header:
         bad = data == header["nodata_value"]
         if bad.any():
-            raise SurfaceFileError(f"{path}: expected a complete grid, got {int(bad.sum())} NODATA points")
+            raise SurfaceFileError(
+                f"{path}: expected a complete grid, got {int(bad.sum())} NODATA points"
+            )
     return data, header["cellsize"]
 
 
@@ -244,7 +288,10 @@ def _uniform_axis(values: np.ndarray, name: str, path: Path) -> tuple[np.ndarray
     step = float(np.median(d))
     # 1e-6 relative: coordinates written with >= 7 significant digits.
     if np.any(np.abs(d - step) > 1e-6 * max(step, np.abs(u).max() * 1e-9)):
-        raise SurfaceFileError(f"{path}: expected uniformly spaced {name} values, got spacings from {d.min():.4g} to {d.max():.4g}")
+        raise SurfaceFileError(
+            f"{path}: expected uniformly spaced {name} values, "
+            f"got spacings from {d.min():.4g} to {d.max():.4g}"
+        )
     return u, step
 
 
@@ -255,13 +302,17 @@ def _read_xyz(path: Path, unit: str | None):
     if stated is not None:
         fac, source = _unit_factor(stated, f"{path}: header unit"), "file metadata"
         if unit is not None:
-            fac, source = _unit_factor(unit, "unit"), f"file metadata + unit {unit} (override of the file's {stated})"
+            fac, source = (
+                _unit_factor(unit, "unit"),
+                f"file metadata + unit {unit} (override of the file's {stated})",
+            )
     elif unit is not None:
         fac, source = _unit_factor(unit, "unit"), f"override (unit {unit})"
     else:
         table = np.loadtxt(path, ndmin=2, max_rows=2)
         raise SurfaceFileError(
-            f"{path}: expected a header '# x_m ...' stating the length unit or a unit override (e.g. unit='um', --unit um), "
+            f"{path}: expected a header '# x_m ...' stating the length "
+            "unit or a unit override (e.g. unit='um', --unit um), "
             f"got a unit-less table of {table.shape[1]} columns"
         )
     table = np.loadtxt(path, ndmin=2) * fac
@@ -271,7 +322,9 @@ def _read_xyz(path: Path, unit: str | None):
         x, z = x[order], z[order]
         _, step = _uniform_axis(x, "x", path)
         if step <= 0 or np.unique(x).size != x.size:
-            raise SurfaceFileError(f"{path}: expected distinct, uniformly spaced x values, got repeated x")
+            raise SurfaceFileError(
+                f"{path}: expected distinct, uniformly spaced x values, got repeated x"
+            )
         return z, step, source
     if table.shape[1] == 3:
         x, y, z = table.T
@@ -279,17 +332,27 @@ def _read_xyz(path: Path, unit: str | None):
         uy, dy = _uniform_axis(y, "y", path)
         nx, ny = ux.size, uy.size
         if nx < 2 or ny < 2:
-            raise SurfaceFileError(f"{path}: expected >= 2 distinct x and y values, got {nx} x and {ny} y")
+            raise SurfaceFileError(
+                f"{path}: expected >= 2 distinct x and y values, got {nx} x and {ny} y"
+            )
         if nx * ny != z.size:
-            raise SurfaceFileError(f"{path}: expected a complete {nx}x{ny} grid ({nx * ny} rows), got {z.size} rows")
+            raise SurfaceFileError(
+                f"{path}: expected a complete {nx}x{ny} grid ({nx * ny} rows), got {z.size} rows"
+            )
         if abs(dx - dy) > 1e-6 * max(dx, dy):
-            raise SurfaceFileError(f"{path}: expected square pixels, got dx = {dx:.6g} and dy = {dy:.6g} (file units x {fac:g} m)")
-        # Place every point by its coordinates: works whichever of x or y varies fastest, and any row order.
+            raise SurfaceFileError(
+                f"{path}: expected square pixels, got dx = {dx:.6g} "
+                f"and dy = {dy:.6g} (file units x {fac:g} m)"
+            )
+        # Place every point by its coordinates: works whichever of x or y
+        # varies fastest, and any row order.
         ix = np.rint((x - ux[0]) / dx).astype(int)
         iy = np.rint((y - uy[0]) / dy).astype(int)
         h = np.full((ny, nx), np.nan)
         h[iy, ix] = z
         if np.isnan(h).any():
-            raise SurfaceFileError(f"{path}: expected one z per (x, y) grid point, got repeated points")
+            raise SurfaceFileError(
+                f"{path}: expected one z per (x, y) grid point, got repeated points"
+            )
         return h, dx, source
     raise SurfaceFileError(f"{path}: expected 2 (x z) or 3 (x y z) columns, got {table.shape[1]}")

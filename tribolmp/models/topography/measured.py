@@ -1,4 +1,6 @@
-"""Measured topographies: instrument files through SurfaceTopography, tribolmp's own formats natively.
+"""Measured topographies.
+
+Instrument files through SurfaceTopography, tribolmp's own formats natively.
 
 SurfaceTopography (the ContactEngineering reader) reads some 40 instrument
 formats (x3p, sur, opd/opdx, datx, gwy, MetroPro, plu/plux, vk, zon, di/spm,
@@ -52,7 +54,17 @@ __all__ = [
 ]
 
 #: Length units accepted as overrides (factor to m).  "um" is the ASCII spelling of µm.
-LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "nm": 1e-9, "A": 1e-10, "Å": 1e-10, "pm": 1e-12}
+LENGTH_UNITS = {
+    "m": 1.0,
+    "mm": 1e-3,
+    "um": 1e-6,
+    "µm": 1e-6,
+    "μm": 1e-6,
+    "nm": 1e-9,
+    "A": 1e-10,
+    "Å": 1e-10,
+    "pm": 1e-12,
+}
 
 #: tribolmp detrend names -> SurfaceTopography detrend modes.
 DETREND_MODES = {"none": None, "mean": "center", "plane": "height", "curvature": "curvature"}
@@ -111,8 +123,11 @@ class Surface:
         """One line for reports: file, format, grid, pixel size and where they came from."""
         nx, ny = self.grid
         grid = f"{nx}x{ny}" if self.h.ndim == 2 else f"{nx} points"
-        return (f"{self.path} ({self.format}, {grid}, pixel {self.pixel_size:.4g} m from {self.unit_source}, "
-                f"detrend {self.detrend})")
+        return (
+            f"{self.path} ({self.format}, {grid}, pixel "
+            f"{self.pixel_size:.4g} m from {self.unit_source}, "
+            f"detrend {self.detrend})"
+        )
 
 
 def require_surfacetopography(why: str):
@@ -122,7 +137,8 @@ def require_surfacetopography(why: str):
         from SurfaceTopography import open_topography  # noqa: F401
     except ImportError:
         raise MissingFeatureError(
-            f"{why}: expected the SurfaceTopography package (pip install 'tribolmp[surfaces]'), got ImportError"
+            f"{why}: expected the SurfaceTopography package "
+            "(pip install 'tribolmp[surfaces]'), got ImportError"
         ) from None
     import SurfaceTopography
 
@@ -132,13 +148,19 @@ def require_surfacetopography(why: str):
 def _unit_factor(unit: str, name: str) -> float:
     u = str(unit).strip()
     if u not in LENGTH_UNITS:
-        raise SurfaceFileError(f"{name}: expected a length unit from {sorted(LENGTH_UNITS)}, got {unit!r}")
+        raise SurfaceFileError(
+            f"{name}: expected a length unit from {sorted(LENGTH_UNITS)}, got {unit!r}"
+        )
     return LENGTH_UNITS[u]
 
 
 def _check_override(pixel_size, unit):
-    if pixel_size is not None and not (isinstance(pixel_size, (int, float)) and not isinstance(pixel_size, bool)
-                                       and math.isfinite(pixel_size) and pixel_size > 0):
+    if pixel_size is not None and not (
+        isinstance(pixel_size, (int, float))
+        and not isinstance(pixel_size, bool)
+        and math.isfinite(pixel_size)
+        and pixel_size > 0
+    ):
         raise SurfaceFileError(f"pixel_size: expected a finite number > 0 (m), got {pixel_size!r}")
     if unit is not None:
         _unit_factor(unit, "unit")
@@ -149,7 +171,8 @@ def _is_native(path: Path) -> bool:
     if suffix in NATIVE_SUFFIXES:
         return True
     if suffix == ".asc":
-        # An ESRI grid (our writer and GIS tools) starts with "ncols"; other .asc files are instrument text exports.
+        # An ESRI grid (our writer and GIS tools) starts with "ncols"; other
+        # .asc files are instrument text exports.
         try:
             with path.open("r", errors="replace") as fh:
                 first = fh.readline().split()
@@ -159,7 +182,8 @@ def _is_native(path: Path) -> bool:
     if suffix == ".xyz":
         return True
     if suffix in (".txt", ".csv", ".dat"):
-        # x z / x y z columns are ours; a wider matrix is an instrument text export (SurfaceTopography's reader).
+        # x z / x y z columns are ours; a wider matrix is an instrument text
+        # export (SurfaceTopography's reader).
         try:
             with path.open("r", errors="replace") as fh:
                 for line in fh:
@@ -225,17 +249,32 @@ def read_surface(
         from .io import read_native
 
         h, px, fmt, source = read_native(path, pixel_size=pixel_size, unit=unit)
-        surf = Surface(h=h, pixel_size=px, format=fmt, unit_source=source, path=str(path), periodic=fmt == "tribolmp-npy")
+        surf = Surface(
+            h=h,
+            pixel_size=px,
+            format=fmt,
+            unit_source=source,
+            path=str(path),
+            periodic=fmt == "tribolmp-npy",
+        )
         if detrend != "none":
             top = to_surfacetopography(surf).detrend(detrend_mode=DETREND_MODES[detrend])
-            surf = Surface(h=_heights(top), pixel_size=px, format=fmt, unit_source=source, detrend=detrend,
-                           path=str(path), periodic=False)
+            surf = Surface(
+                h=_heights(top),
+                pixel_size=px,
+                format=fmt,
+                unit_source=source,
+                detrend=detrend,
+                path=str(path),
+                periodic=False,
+            )
         return surf
     top, fmt, source = _read_st(path, pixel_size=pixel_size, unit=unit, channel=channel)
     notes: list[str] = []
     if not top.is_uniform:
         raise SurfaceFileError(
-            f"{path}: expected a uniformly sampled map or line scan, got a nonuniform line scan of {top.nb_grid_pts[0]} "
+            f"{path}: expected a uniformly sampled map or line scan, "
+            f"got a nonuniform line scan of {top.nb_grid_pts[0]} "
             "points (tribolmp topography info reads it; resample it to a uniform grid for a model)"
         )
     if top.has_undefined_data:
@@ -253,21 +292,33 @@ def read_surface(
     sizes = np.atleast_1d(np.asarray(top.physical_sizes, dtype=float))
     pts = np.atleast_1d(np.asarray(top.nb_grid_pts, dtype=int))
     pixels = sizes / pts
-    # Square pixels: the models take one spacing.  1e-6 relative allows for float32 sizes in NetCDF files.
+    # Square pixels: the models take one spacing.  1e-6 relative allows for
+    # float32 sizes in NetCDF files.
     if pixels.size == 2 and abs(pixels[0] - pixels[1]) > 1e-6 * max(pixels):
         raise SurfaceFileError(
-            f"{path}: expected square pixels, got {pixels[0]:.4g} m along x and {pixels[1]:.4g} m along y "
+            f"{path}: expected square pixels, got {pixels[0]:.4g} "
+            f"m along x and {pixels[1]:.4g} m along y "
             "(resample the map to one spacing)"
         )
     h = _heights(top)
     if h.ndim == 2 and min(h.shape) < 2 or h.size < 2:
         raise SurfaceFileError(f"{path}: expected >= 2 points per side, got grid {list(pts)}")
-    return Surface(h=h, pixel_size=float(pixels[0]), format=fmt, unit_source=source, detrend=detrend,
-                   path=str(path), periodic=bool(top.is_periodic), notes=tuple(notes))
+    return Surface(
+        h=h,
+        pixel_size=float(pixels[0]),
+        format=fmt,
+        unit_source=source,
+        detrend=detrend,
+        path=str(path),
+        periodic=bool(top.is_periodic),
+        notes=tuple(notes),
+    )
 
 
 def surface_provenance(path, fallback_pixel_size: float | None = None, **options) -> str:
-    """One line for reports: the file, its format and grid, and where units and pixel size came from.
+    """One line for reports.
+
+    The file, its format and grid, and where units and pixel size came from.
 
     ``fallback_pixel_size`` is the scene's ``[roughness].pixel_size``, which is
     used (and so named) only for files that state no pixel size; ``options``
@@ -280,11 +331,15 @@ def surface_provenance(path, fallback_pixel_size: float | None = None, **options
         if fallback_pixel_size is None or options.get("pixel_size") is not None:
             raise
     surf = read_surface(path, **{**options, "pixel_size": fallback_pixel_size})
-    return surf.describe().replace(f"from {surf.unit_source}", "from [roughness].pixel_size (the file has none)")
+    return surf.describe().replace(
+        f"from {surf.unit_source}", "from [roughness].pixel_size (the file has none)"
+    )
 
 
 def _check_exists(path: Path) -> None:
-    if not path.exists() and not (path.suffix.lower() in NATIVE_SUFFIXES and path.with_suffix(".npy").exists()):
+    if not path.exists() and not (
+        path.suffix.lower() in NATIVE_SUFFIXES and path.with_suffix(".npy").exists()
+    ):
         raise SurfaceFileError(f"{path}: expected an existing height-map file, got no such file")
     if path.is_dir():
         raise SurfaceFileError(f"{path}: expected a height-map file, got a folder")
@@ -301,9 +356,13 @@ def _st_unit(unit: str) -> str:
 
 
 def _read_st(path: Path, *, pixel_size, unit, channel):
-    """Open ``path`` with SurfaceTopography; returns (topography in m, in memory, format, unit_source)."""
+    """Open ``path`` with SurfaceTopography.
+
+    Returns (topography in m, in memory, format, unit_source).
+    """
     require_surfacetopography(f"{path}")
-    # Our own handle, closed here: some readers (NetCDF) otherwise leave the file open until garbage collection.
+    # Our own handle, closed here: some readers (NetCDF) otherwise leave the
+    # file open until garbage collection.
     with open(path, "rb") as fh:
         return _read_st_open(fh, path, pixel_size=pixel_size, unit=unit, channel=channel)
 
@@ -315,23 +374,31 @@ def _read_st_open(fh, path: Path, *, pixel_size, unit, channel):
     try:
         reader = open_topography(fh)
     except (ReadFileError, ValueError, OSError) as exc:
-        raise SurfaceFileError(f"{path}: expected a height-map file SurfaceTopography can read, got {_line(exc)}") from None
+        raise SurfaceFileError(
+            f"{path}: expected a height-map file SurfaceTopography can read, got {_line(exc)}"
+        ) from None
     try:
         ch = reader.default_channel if channel is None else reader.channels[channel]
     except IndexError:
-        raise SurfaceFileError(f"{path}: channel expected in 0..{len(reader.channels) - 1}, got {channel}") from None
+        raise SurfaceFileError(
+            f"{path}: channel expected in 0..{len(reader.channels) - 1}, got {channel}"
+        ) from None
     file_unit = ch.unit
     sizes = ch.physical_sizes
     uniform = ch.is_uniform is not False
     # A nonuniform line scan carries its positions: no size needed.
-    has_size = not uniform or (sizes is not None and all(v is not None for v in np.atleast_1d(sizes)))
+    has_size = not uniform or (
+        sizes is not None and all(v is not None for v in np.atleast_1d(sizes))
+    )
     if file_unit is None and unit is None:
         raise SurfaceFileError(
-            f"{path}: expected a length unit in the file or an override (unit=, --unit, [roughness].surface_unit), got none"
+            f"{path}: expected a length unit in the file or an override "
+            "(unit=, --unit, [roughness].surface_unit), got none"
         )
     if not has_size and pixel_size is None:
         raise SurfaceFileError(
-            f"{path}: expected a physical size in the file or a pixel size override (pixel_size=, --pixel-size, "
+            f"{path}: expected a physical size in the file or "
+            "a pixel size override (pixel_size=, --pixel-size, "
             "[roughness].surface_pixel_size, m), got none"
         )
     kwargs: dict[str, Any] = {}
@@ -343,12 +410,20 @@ def _read_st_open(fh, path: Path, *, pixel_size, unit, channel):
     try:
         top = reader.topography(channel_index=ch.index, **kwargs)
     except (ReadFileError, ValueError, KeyError) as exc:
-        raise SurfaceFileError(f"{path}: expected a readable topography channel, got {_line(exc)}") from None
+        raise SurfaceFileError(
+            f"{path}: expected a readable topography channel, got {_line(exc)}"
+        ) from None
     parts = []
     if unit is not None:
-        parts.append(f"unit {unit} (override)" if file_unit is None else f"unit {unit} (override of the file's {file_unit})")
+        parts.append(
+            f"unit {unit} (override)"
+            if file_unit is None
+            else f"unit {unit} (override of the file's {file_unit})"
+        )
     if pixel_size is not None:
-        parts.append("pixel size (override)" if not has_size else "pixel size (override of the file's)")
+        parts.append(
+            "pixel size (override)" if not has_size else "pixel size (override of the file's)"
+        )
     if not parts:
         source = "file metadata"
     elif file_unit is None and not has_size:
@@ -357,11 +432,22 @@ def _read_st_open(fh, path: Path, *, pixel_size, unit, channel):
         source = "file metadata + " + ", ".join(parts)
     if not top.is_uniform:
         if unit is not None and file_unit is not None:
-            raise SurfaceFileError(f"{path}: a unit override of a nonuniform line scan is not supported (file unit {file_unit})")
+            raise SurfaceFileError(
+                f"{path}: a unit override of a nonuniform line "
+                f"scan is not supported (file unit {file_unit})"
+            )
         x, h = top.to_unit("m").positions_and_heights()
-        return NonuniformLineScan(np.array(x), np.array(h), unit="m", info=top.info), str(reader.format()), source
-    # Rebuild in m: heights and lateral axes scaled by the unit (the override, or the file's), the pixel by the override.
-    fac = _unit_factor(unit if unit is not None else ("um" if str(top.unit) in ("µm", "μm") else str(top.unit)), "unit")
+        return (
+            NonuniformLineScan(np.array(x), np.array(h), unit="m", info=top.info),
+            str(reader.format()),
+            source,
+        )
+    # Rebuild in m: heights and lateral axes scaled by the unit (the
+    # override, or the file's), the pixel by the override.
+    fac = _unit_factor(
+        unit if unit is not None else ("um" if str(top.unit) in ("µm", "μm") else str(top.unit)),
+        "unit",
+    )
     h = np.ma.array(top.heights(), copy=True) * fac
     n = [int(v) for v in np.atleast_1d(top.nb_grid_pts)]
     if pixel_size is not None:
@@ -380,7 +466,10 @@ def _line(exc: BaseException) -> str:
 
 
 def to_surfacetopography(surface: Surface):
-    """Return the :class:`Surface` as a SurfaceTopography ``Topography``/``UniformLineScan`` (unit m)."""
+    """Return the :class:`Surface` as a SurfaceTopography ``Topography``/``UniformLineScan``.
+
+    Heights in m.
+    """
     require_surfacetopography("SurfaceTopography export")
     from SurfaceTopography import Topography, UniformLineScan
 
@@ -393,7 +482,9 @@ def to_surfacetopography(surface: Surface):
 
 
 def write_surface(path, h, pixel_size: float, *, periodic: bool = True) -> Path:
-    """Write heights (m) with SurfaceTopography's writer: ``.x3p`` (2D, ISO 25178-72) or ``.nc`` (NetCDF, 1D/2D).
+    """Write heights (m) with SurfaceTopography's writer.
+
+    ``.x3p`` (2D, ISO 25178-72) or ``.nc`` (NetCDF, 1D/2D).
 
     Both are read by SurfaceTopography and Gwyddion.  Heights are stored as
     64-bit floats, so a read-back is exact; NetCDF stores the physical size
@@ -406,7 +497,9 @@ def write_surface(path, h, pixel_size: float, *, periodic: bool = True) -> Path:
         raise SurfaceFileError(f"{path}: expected a .x3p or .nc target, got {suffix!r}")
     if suffix == ".x3p" and h.ndim != 2:
         raise SurfaceFileError(f"{path}: x3p holds 2D maps only, got shape {h.shape}; use .nc")
-    top = to_surfacetopography(Surface(h=h, pixel_size=float(pixel_size), format="", unit_source="", periodic=periodic))
+    top = to_surfacetopography(
+        Surface(h=h, pixel_size=float(pixel_size), format="", unit_source="", periodic=periodic)
+    )
     path.parent.mkdir(parents=True, exist_ok=True)
     if suffix == ".x3p":
         top.to_x3p(str(path))
@@ -416,7 +509,9 @@ def write_surface(path, h, pixel_size: float, *, periodic: bool = True) -> Path:
 
 
 def rms_values(h, pixel_size: float, periodic: bool) -> tuple[float, float]:
-    """Rms height (m) and rms gradient (1) of a map by plain finite differences (tribolmp's own numbers).
+    """Rms height (m) and rms gradient (1) of a map by plain finite differences.
+
+    Computed by tribolmp itself.
 
     The gradient uses forward differences, wrapped for a periodic map and over
     the ``(ny-1) x (nx-1)`` interior otherwise; for a line scan the second value
@@ -457,7 +552,9 @@ def _hurst(q: np.ndarray, c: np.ndarray, dim: int) -> float | None:
     return float((-slope - dim) / 2.0)
 
 
-def topography_info(path, *, pixel_size=None, unit=None, detrend="none", png=None, psd_csv=None, channel=None) -> dict:
+def topography_info(
+    path, *, pixel_size=None, unit=None, detrend="none", png=None, psd_csv=None, channel=None
+) -> dict:
     """Statistics of a measured topography file, computed by SurfaceTopography.
 
     Returns the JSON fields of ``tribolmp topography info`` (SI units):
@@ -483,7 +580,11 @@ def topography_info(path, *, pixel_size=None, unit=None, detrend="none", png=Non
     if mode is not None:
         top = top.detrend(detrend_mode=mode)
     uniform = bool(top.is_uniform)
-    missing = int(np.count_nonzero(np.ma.getmaskarray(top.heights()))) if uniform and top.has_undefined_data else 0
+    missing = (
+        int(np.count_nonzero(np.ma.getmaskarray(top.heights())))
+        if uniform and top.has_undefined_data
+        else 0
+    )
     notes = []
     if top.dim == 2:
         nx, ny = (int(n) for n in top.nb_grid_pts)
@@ -509,9 +610,13 @@ def topography_info(path, *, pixel_size=None, unit=None, detrend="none", png=Non
     try:
         ptop = top
         if missing:
-            # The PSD needs every point: computed on the harmonic fill, said so; rms values use measured points only.
+            # The PSD needs every point: computed on the harmonic fill, said
+            # so; rms values use measured points only.
             ptop = top.interpolate_undefined_data("harmonic")
-            notes.append(f"PSD and Hurst on the map with {missing} missing points filled (harmonic interpolation)")
+            notes.append(
+                f"PSD and Hurst on the map with {missing} "
+                "missing points filled (harmonic interpolation)"
+            )
         if top.dim == 2:
             q, c = ptop.power_spectrum_from_area()
         else:
@@ -536,11 +641,30 @@ def topography_info(path, *, pixel_size=None, unit=None, detrend="none", png=Non
     if png is not None:
         files["png"] = str(_plot_info(top, psd, Path(png), title=f"{path.name} ({fmt})"))
     return {
-        "file": str(path), "format": fmt, "kind": kind, "grid": [nx, ny], "size_m": [lx, ly],
-        "pixel_size_m": pixel, "rms_height_m": rms_h, "rms_gradient": rms_g, "hurst": hurst,
-        "unit_source": source, "uniform": uniform, "missing_points": missing, "detrend": detrend,
-        "periodic": bool(top.is_periodic), "psd": psd, "files": files, "notes": notes,
-        "units": {"size_m": "m", "pixel_size_m": "m", "rms_height_m": "m", "rms_gradient": "1", "hurst": "1"},
+        "file": str(path),
+        "format": fmt,
+        "kind": kind,
+        "grid": [nx, ny],
+        "size_m": [lx, ly],
+        "pixel_size_m": pixel,
+        "rms_height_m": rms_h,
+        "rms_gradient": rms_g,
+        "hurst": hurst,
+        "unit_source": source,
+        "uniform": uniform,
+        "missing_points": missing,
+        "detrend": detrend,
+        "periodic": bool(top.is_periodic),
+        "psd": psd,
+        "files": files,
+        "notes": notes,
+        "units": {
+            "size_m": "m",
+            "pixel_size_m": "m",
+            "rms_height_m": "m",
+            "rms_gradient": "1",
+            "hurst": "1",
+        },
     }
 
 

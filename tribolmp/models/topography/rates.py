@@ -48,16 +48,17 @@ def params_from_rates(
     operator: str = "spectral",
     fallback: Mapping[str, Any] | None = None,
 ) -> TopographyParams:
-    """Build :class:`TopographyParams` from nanoscale rates at the MCA's conditions (module docstring).
+    """Build :class:`TopographyParams` from nanoscale rates at the MCA's conditions.
+
+    See the module docstring.
 
     Parameters
     ----------
     rates : Rates or mapping
-        The :class:`~tribolmp.records.Rates` record, ``rates.json`` content or ``[rates]``: the C1 coefficients, or
-        ``step_length_m`` (m), ``diffusion_m2_s`` (m^2/s), ``wear_rate`` (1/s)
-        and ``detachment_rate``/``reattachment_rate`` (1/s) or
-        ``transfer_rate`` (1/m); the MCA velocity ``sliding_velocity_m_s`` /
-        ``velocity_m_s`` (m/s).  Other keys are ignored.
+        The :class:`~tribolmp.records.Rates` record, ``rates.json`` content or ``[rates]``: the C1
+        coefficients, or ``step_length_m`` (m), ``diffusion_m2_s`` (m^2/s), ``wear_rate`` (1/s) and
+        ``detachment_rate``/``reattachment_rate`` (1/s) or ``transfer_rate`` (1/m); the MCA velocity
+        ``sliding_velocity_m_s`` / ``velocity_m_s`` (m/s).  Other keys are ignored.
     dim, n : int
         Dimension and grid points per side.
     dx : float, optional
@@ -94,37 +95,66 @@ def params_from_rates(
     if dim not in (1, 2):
         raise ParameterError("dim", "one of [1, 2]", dim)
     r = dict(rates)
-    if r.get("sliding_velocity_m_s") is None and r.get("velocity_m_s") is None and sliding_velocity is not None:
-        if not (isinstance(sliding_velocity, (int, float)) and math.isfinite(sliding_velocity) and sliding_velocity > 0):
-            raise ParameterError("sliding_velocity", "a finite MCA velocity > 0 (m/s)", sliding_velocity)
+    if (
+        r.get("sliding_velocity_m_s") is None
+        and r.get("velocity_m_s") is None
+        and sliding_velocity is not None
+    ):
+        if not (
+            isinstance(sliding_velocity, (int, float))
+            and math.isfinite(sliding_velocity)
+            and sliding_velocity > 0
+        ):
+            raise ParameterError(
+                "sliding_velocity", "a finite MCA velocity > 0 (m/s)", sliding_velocity
+            )
         r["sliding_velocity_m_s"] = float(sliding_velocity)
     eq = eq23_from_rates(r, fallback=fallback)
-    l = eq.step_length_m or 1.0
+    step = eq.step_length_m or 1.0
     w = 1.0
     if dim == 2:
         w = r.get("slab_thickness_m") or eq.step_length_m
         if not w:
-            raise ParameterError("rates.slab_thickness_m", "the 2D MCA's slab thickness (m) for a 2D surface", None)
+            raise ParameterError(
+                "rates.slab_thickness_m", "the 2D MCA's slab thickness (m) for a 2D surface", None
+            )
     mu = eq.mu
     if duration is None:
-        duration = 5.0 / mu if mu > 0 else (1000.0 * l * l / eq.d0 if eq.d0 > 0 else 1.0)
+        duration = 5.0 / mu if mu > 0 else (1000.0 * step * step / eq.d0 if eq.d0 > 0 else 1.0)
     if not (isinstance(steps, int) and steps >= 1):
         raise ParameterError("steps", "an integer >= 1", steps)
     return TopographyParams(
-        dim=dim, n=n, dx=l if dx is None else dx, d0=eq.d0, dx_noise=eq.dx_l2 * w / l**2, dz=eq.dz * w, mu=mu, l=l,
-        correlation_length=correlation_length, dt=duration / steps, steps=steps, operator=operator,
+        dim=dim,
+        n=n,
+        dx=step if dx is None else dx,
+        d0=eq.d0,
+        dx_noise=eq.dx_l2 * w / step**2,
+        dz=eq.dz * w,
+        mu=mu,
+        l=step,
+        correlation_length=correlation_length,
+        dt=duration / steps,
+        steps=steps,
+        operator=operator,
     )
 
 
 def topography_fallback(topo, slab: float) -> dict[str, Any]:
-    """Return a ``[topography]`` section's Eq. 23 values in the 1D C1 names (for coefficients not measured).
+    """Return a ``[topography]`` section's Eq. 23 values in the 1D C1 names.
+
+    Used for coefficients not measured.
 
     A 2D value is ``slab`` times the 1D one (the profile is the strip average of
     the surface over the 2D MCA's slab, see :func:`tribolmp.models.bridges.rates_at_part`).
     """
     w = slab if topo.dim == 2 else 1.0
-    return {"mu_per_s": topo.mu, "d0_m2_s": topo.d0, "dz": topo.dz / w, "dx_l2": topo.dx_noise * topo.l**2 / w,
-            "source": "[topography] values (assumed: not measured by the MCA)"}
+    return {
+        "mu_per_s": topo.mu,
+        "d0_m2_s": topo.d0,
+        "dz": topo.dz / w,
+        "dx_l2": topo.dx_noise * topo.l**2 / w,
+        "source": "[topography] values (assumed: not measured by the MCA)",
+    }
 
 
 def params_from_scene(scene, rates: Mapping[str, Any] | None = None) -> TopographyParams:
@@ -144,12 +174,19 @@ def params_from_scene(scene, rates: Mapping[str, Any] | None = None) -> Topograp
     if rates is None and scene.rates is not None:
         rates = scene.rates.to_record()
     if rates is not None:
-        # A measured rates.json (issue 14) may lack coefficients (no wear_rate; C1 null for a run too short
-        # for the slow modes): those come from the [topography] values, listed per coefficient by
-        # tribolmp.models.bridges.eq23_from_rates (an assumption the running-in report states).
+        # A measured rates.json (issue 14) may lack coefficients (no wear_rate; C1 null
+        # for a run too short for the slow modes): those come from the [topography]
+        # values, listed per coefficient by tribolmp.models.bridges.eq23_from_rates (an
+        # assumption the running-in report states).
         return params_from_rates(
-            rates, dim=topo.dim, n=topo.grid_points, dx=topo.pixel_size, duration=topo.duration,
-            steps=topo.steps, correlation_length=topo.correlation_length, fallback=topography_fallback(topo, topo.l),
+            rates,
+            dim=topo.dim,
+            n=topo.grid_points,
+            dx=topo.pixel_size,
+            duration=topo.duration,
+            steps=topo.steps,
+            correlation_length=topo.correlation_length,
+            fallback=topography_fallback(topo, topo.l),
         )
     return TopographyParams(
         dim=topo.dim, n=topo.grid_points, dx=topo.pixel_size, d0=topo.d0, dx_noise=topo.dx_noise,

@@ -109,7 +109,9 @@ class TopographyParams:
 
     dim: int = param(1, choices=(1, 2), doc="1D profile or 2D surface.")
     grid_points: int = param(1024, lo=4, hi=1 << 26, doc="Grid points per side (even); old name n.")
-    pixel_size: float = param(10e-9, unit="m", lo=0.0, lo_open=True, doc="Grid spacing; old name dx.")
+    pixel_size: float = param(
+        10e-9, unit="m", lo=0.0, lo_open=True, doc="Grid spacing; old name dx."
+    )
     d0: float = param(1e-12, unit="m^2/s", lo=0.0, doc="Surface diffusion D0.")
     dx_noise: float = param(2.5e-20, unit="m^(2+dim)/s", lo=0.0, doc="Flux-noise intensity Dx.")
     dz: float = param(5.6e-20, unit="m^(2+dim)/s", lo=0.0, doc="Transfer-noise intensity Dz.")
@@ -124,9 +126,15 @@ class TopographyParams:
     def __post_init__(self) -> None:
         validate_dataclass(self)
         if self.grid_points % 2:
-            raise ParameterError("grid_points", "an even number of grid points >= 4", self.grid_points)
+            raise ParameterError(
+                "grid_points", "an even number of grid points >= 4", self.grid_points
+            )
         if self.grid_points**self.dim > MAX_POINTS:
-            raise ParameterError("grid_points", f"at most {MAX_POINTS} grid points in total (grid_points**dim)", self.grid_points)
+            raise ParameterError(
+                "grid_points",
+                f"at most {MAX_POINTS} grid points in total (grid_points**dim)",
+                self.grid_points,
+            )
 
     # ---- derived quantities
     @property
@@ -166,7 +174,10 @@ def wavevectors(p: TopographyParams) -> list[np.ndarray]:
     """Wavevector components (1/m) on the real-FFT grid, broadcastable to its shape."""
     if p.dim == 1:
         return [2 * np.pi * np.fft.rfftfreq(p.grid_points, p.pixel_size)]
-    return [2 * np.pi * np.fft.fftfreq(p.grid_points, p.pixel_size)[:, None], 2 * np.pi * np.fft.rfftfreq(p.grid_points, p.pixel_size)[None, :]]
+    return [
+        2 * np.pi * np.fft.fftfreq(p.grid_points, p.pixel_size)[:, None],
+        2 * np.pi * np.fft.rfftfreq(p.grid_points, p.pixel_size)[None, :],
+    ]
 
 
 def _modes(p: TopographyParams, lattice: bool):
@@ -202,7 +213,7 @@ def _psd_summary(p: TopographyParams, s_grid: np.ndarray) -> tuple[np.ndarray, n
 
 
 def _mean_square_dev(p: TopographyParams, s_grid: np.ndarray) -> float:
-    """Expected Rq^2 (m^2) = (1/A) sum_{k != 0} S over the full plane, from the rfft grid."""
+    """Return the expected Rq^2 (m^2) = (1/A) sum_{k != 0} S over the plane, from the rfft grid."""
     w = np.full(s_grid.shape, 2.0)
     w[..., 0] = 1.0
     w[..., -1] = 1.0
@@ -259,11 +270,18 @@ class _ExactOU:
         self._noise = self._buf.view(self.cplx_dtype)[..., 0]
 
     def _rates(self):
-        """(gamma, q): mode decay rate (1/s) and DFT variance rate 2 (Dz + Dx l^2 k^2) F~ n^dim/dx^dim."""
+        """(gamma, q): mode decay rate (1/s) and DFT variance rate of every mode.
+
+        q = 2 (Dz + Dx l^2 k^2) F~ n^dim/dx^dim.
+        """
         p = self.p
         kmag, k2 = _modes(p, self.lattice)
         gamma = p.mu + p.d0 * k2
-        q = 2.0 * (p.dz + p.dx_noise * p.l**2 * k2) * spectra.noise_spectrum(kmag, p.correlation_length)
+        q = (
+            2.0
+            * (p.dz + p.dx_noise * p.l**2 * k2)
+            * spectra.noise_spectrum(kmag, p.correlation_length)
+        )
         q *= p.grid_points**p.dim / p.pixel_size**p.dim
         return gamma, q
 
@@ -322,7 +340,9 @@ class _ExactOU:
 
     def periodogram(self) -> np.ndarray:
         hk = self.hk
-        return (self.p.pixel_size**self.p.dim / self.p.grid_points**self.p.dim) * (hk.real**2 + hk.imag**2)
+        return (self.p.pixel_size**self.p.dim / self.p.grid_points**self.p.dim) * (
+            hk.real**2 + hk.imag**2
+        )
 
 
 class _EulerFD:
@@ -334,8 +354,11 @@ class _EulerFD:
         limit = euler_dt_limit(p)
         if p.dt >= limit:
             raise ParameterError(
-                "dt", f"a step below the explicit stability limit 2/(mu + 4*dim*D0/dx^2) = {limit:.4g} s "
-                "(use scheme='exact' for large steps)", p.dt)
+                "dt",
+                f"a step below the explicit stability limit 2/(mu + 4*dim*D0/dx^2) = {limit:.4g} s "
+                "(use scheme='exact' for large steps)",
+                p.dt,
+            )
         self.p = p
         self.rng = rng
         self.h = np.zeros((replicas,) + p.shape)
@@ -412,7 +435,9 @@ def _irfft(p, hk):
 def _check_h0(p: TopographyParams, h0) -> np.ndarray:
     h0 = np.asarray(h0, dtype=float)
     if h0.shape[-p.dim :] != p.shape or h0.ndim > p.dim + 1:
-        raise ParameterError("h0", f"heights of shape {p.shape} (or (replicas, *{p.shape}))", h0.shape)
+        raise ParameterError(
+            "h0", f"heights of shape {p.shape} (or (replicas, *{p.shape}))", h0.shape
+        )
     if not np.all(np.isfinite(h0)):
         raise ParameterError("h0", "finite heights", "non-finite values")
     return h0
@@ -473,7 +498,11 @@ def evolve(
         raise ParameterError("params", "a TopographyParams", type(params).__name__)
     if not isinstance(rng, np.random.Generator):
         raise ParameterError("rng", "a numpy.random.Generator", type(rng).__name__)
-    replicas = int(replicas) if isinstance(replicas, (int, np.integer)) and not isinstance(replicas, bool) else replicas
+    replicas = (
+        int(replicas)
+        if isinstance(replicas, (int, np.integer)) and not isinstance(replicas, bool)
+        else replicas
+    )
     if not isinstance(replicas, int) or replicas < 1:
         raise ParameterError("replicas", "an integer >= 1", replicas)
     record = sorted({int(s) for s in (record_steps or ())})
@@ -485,7 +514,9 @@ def evolve(
     if h0 is not None and not isinstance(h0, str):
         h0_arr = _check_h0(p, h0)
         if h0_arr.ndim == p.dim + 1 and h0_arr.shape[0] != replicas:
-            raise ParameterError("h0", f"{replicas} initial surfaces (one per replica)", h0_arr.shape[0])
+            raise ParameterError(
+                "h0", f"{replicas} initial surfaces (one per replica)", h0_arr.shape[0]
+            )
     elif isinstance(h0, str) and h0 != "stationary":
         raise ParameterError("h0", "an array, None or 'stationary'", h0)
 
@@ -513,8 +544,18 @@ def evolve(
         _, psd_th = _psd_summary(p, th_grid)
         h = stepper.heights()
         rq = float(np.sqrt(np.mean((h - h.mean(axis=tuple(range(1, h.ndim)), keepdims=True)) ** 2)))
-        return dict(t_s=t, step=step, k=k, psd=psd, psd_theory=psd_th, rq=rq,
-                    rq_theory=math.sqrt(_mean_square_dev(p, th_grid)), s_grid=s_grid, th_grid=th_grid, h=h)
+        return dict(
+            t_s=t,
+            step=step,
+            k=k,
+            psd=psd,
+            psd_theory=psd_th,
+            rq=rq,
+            rq_theory=math.sqrt(_mean_square_dev(p, th_grid)),
+            s_grid=s_grid,
+            th_grid=th_grid,
+            h=h,
+        )
 
     history = []
     rec = iter(record + [None])
@@ -527,7 +568,9 @@ def evolve(
         call_progress(progress, i, p.steps, "Eq. 23 steps")
         if i == nxt:
             snap = snapshot(i)
-            history.append({k: snap[k] for k in ("t_s", "step", "k", "psd", "psd_theory", "rq", "rq_theory")})
+            history.append(
+                {k: snap[k] for k in ("t_s", "step", "k", "psd", "psd_theory", "rq", "rq_theory")}
+            )
             nxt = next(rec)
     final = snapshot(p.steps)
     h = final["h"]
@@ -555,8 +598,12 @@ def evolve(
     k1, k2 = p.crossovers()
     res.k1, res.k2 = k1, k2
     if p.dim == 2:
-        res.line_k, res.line_psd = spectra.line_scan_psd_theory(final["s_grid"], p.grid_points, p.pixel_size)
-        _, res.line_psd_theory = spectra.line_scan_psd_theory(final["th_grid"], p.grid_points, p.pixel_size)
+        res.line_k, res.line_psd = spectra.line_scan_psd_theory(
+            final["s_grid"], p.grid_points, p.pixel_size
+        )
+        _, res.line_psd_theory = spectra.line_scan_psd_theory(
+            final["th_grid"], p.grid_points, p.pixel_size
+        )
     res.units = {"h": "m", "k": "1/m", "psd": f"m^{p.dim + 2}", "psd_theory": f"m^{p.dim + 2}",
                  "psd_stationary": f"m^{p.dim + 2}", "rq": "m", "rq_theory": "m", "mean": "m",
                  "t_s": "s", "dx": "m", "k1": "1/m", "k2": "1/m", "line_psd": "m^3",

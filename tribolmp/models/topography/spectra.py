@@ -153,7 +153,9 @@ def _phi(gamma, t):
     return np.where(gamma > 0, -np.expm1(-2.0 * safe * t) / (2.0 * safe), t)
 
 
-def transient_psd(k, t, *, d0, dx_noise, dz, mu, l, correlation_length=0.0, lattice_dx=None, k2=None, s0=None):
+def transient_psd(
+    k, t, *, d0, dx_noise, dz, mu, l, correlation_length=0.0, lattice_dx=None, k2=None, s0=None
+):
     """Transient PSD S(k, t) of Eq. 23 from an initial spectrum ``s0`` (default flat start).
 
     ``S(k,t) = s0 exp(-2 gamma t) + 2 (Dz + Dx l^2 k^2) F~ (1 - exp(-2 gamma t)) / (2 gamma)``
@@ -172,7 +174,21 @@ def transient_psd(k, t, *, d0, dx_noise, dz, mu, l, correlation_length=0.0, latt
     return noise + np.asarray(s0, dtype=float) * np.exp(-2.0 * gamma * t)
 
 
-def euler_psd(k, steps, dt, *, d0, dx_noise, dz, mu, l, correlation_length=0.0, lattice_dx=None, k2=None, s0=None):
+def euler_psd(
+    k,
+    steps,
+    dt,
+    *,
+    d0,
+    dx_noise,
+    dz,
+    mu,
+    l,
+    correlation_length=0.0,
+    lattice_dx=None,
+    k2=None,
+    s0=None,
+):
     """Exact expected PSD after ``steps`` explicit Euler-Maruyama steps of ``dt`` (s).
 
     Per mode the scheme is ``X <- r X + sqrt(2 I dt) xi`` with
@@ -190,7 +206,9 @@ def euler_psd(k, steps, dt, *, d0, dx_noise, dz, mu, l, correlation_length=0.0, 
     r2n = r2**steps
     denom = gamma * dt * (2.0 - gamma * dt)  # 1 - r^2, written to stay exact for small gamma dt
     safe = np.where(denom != 0, denom, 1.0)
-    growth = np.where(denom != 0, -np.expm1(steps * np.log(np.where(r2 > 0, r2, 1.0))) / safe, steps)
+    growth = np.where(
+        denom != 0, -np.expm1(steps * np.log(np.where(r2 > 0, r2, 1.0))) / safe, steps
+    )
     growth = np.where((r2 == 0) & (denom != 0), 1.0 / safe, growth)
     out = 2.0 * intensity * dt * growth
     if s0 is not None:
@@ -297,7 +315,9 @@ def relaxation_time(k, *, d0, mu, lattice_dx=None):
 def _check_map(h, dim):
     h = np.asarray(h, dtype=float)
     if h.ndim < dim or any(s < 4 for s in h.shape[-dim:]):
-        raise ParameterError("h", f"an array with >= 4 points along each of its last {dim} axes", h.shape)
+        raise ParameterError(
+            "h", f"an array with >= 4 points along each of its last {dim} axes", h.shape
+        )
     if not np.all(np.isfinite(h)):
         raise ParameterError("h", "finite heights", "non-finite values")
     return h
@@ -432,7 +452,7 @@ def psd_line_scans(h, dx: float, axis: int = -1):
 
 
 def line_scan_psd_theory(s_grid, n: int, dx: float):
-    """Expected line-scan PSD (m^3) from a 2D spectrum given on the real-FFT grid.
+    """Return the expected line-scan PSD (m^3) of a 2D spectrum given on the real-FFT grid.
 
     ``s_grid`` has shape ``(n, n//2 + 1)`` (``numpy.fft.rfft2`` layout); the
     scans run along the last axis, so ``S_line(k) = (1/L) sum_{k'} S(k', k)``.
