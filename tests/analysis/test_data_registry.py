@@ -14,7 +14,9 @@ def test_committed_files_match_the_generator(tmp_path):
     answers = data.generate("tiny_transfer", tmp_path)
     assert answers == data.expected("tiny_transfer")
     for name in ("traj.lammpstrj", "meta.json", "friction.csv"):
-        assert (tmp_path / name).read_bytes() == (data.path("tiny_transfer") / name).read_bytes(), name
+        assert (tmp_path / name).read_bytes() == (data.path("tiny_transfer") / name).read_bytes(), (
+            name
+        )
 
 
 def test_analyses_on_committed_data():
@@ -23,7 +25,10 @@ def test_analyses_on_committed_data():
     meta = read_meta(folder)
     u = open_trajectory(folder, meta)
     bt = BondTurnover(u, meta).run().results
-    assert (bt.broken_total, bt.formed_total) == (exp["make_transfer"]["broken_total"], exp["make_transfer"]["formed_total"])
+    assert (bt.broken_total, bt.formed_total) == (
+        exp["make_transfer"]["broken_total"],
+        exp["make_transfer"]["formed_total"],
+    )
     mt = MassTransfer(u, meta, window=1).run().results
     assert mt.transfer_events == exp["make_transfer"]["transfer_events"]
     assert mt.transfer_rate == pytest.approx(exp["make_transfer"]["transfer_rate"], rel=1e-4)

@@ -33,7 +33,8 @@ def test_known_diffusion_coefficient(tmp_path, dim):
 
 
 def test_reference_frames_agree_for_rigid_bodies(tmp_path):
-    # D = 4e-9 m^2/s: the rms displacement over the fit window (3.2 nm) exceeds one diameter (diffusive regime)
+    # D = 4e-9 m^2/s: the rms displacement over the fit window (3.2 nm)
+    # exceeds one diameter (diffusive regime)
     exp, meta, u = _run(tmp_path, 5, n_walkers=150, n_frames=50, diffusion=4e-9)
     d = {ref: LateralDiffusion(u, meta, reference=ref).run().results.diffusion_m2_s
          for ref in ("group", "body", "anchor")}
@@ -74,9 +75,11 @@ def test_diffusive_walkers_pass_the_regime_test(tmp_path):
 
 
 def test_sheared_walkers_are_not_diffusion(tmp_path):
-    # shear dispersion: per-walker drift of 2 m/s sd on top of a weak walk (sd^2 t >> 2 D from 0.2 ns on),
-    # MSD ~ t^2; a linear fit would report a D 40x the true one
-    exp, meta, u = _run(tmp_path, 22, n_walkers=200, n_frames=80, diffusion=2e-10, shear_velocity_sd=2.0)
+    # shear dispersion: per-walker drift of 2 m/s sd on top of a weak walk (sd^2 t >>
+    # 2 D from 0.2 ns on), MSD ~ t^2; a linear fit would report a D 40x the true one
+    exp, meta, u = _run(
+        tmp_path, 22, n_walkers=200, n_frames=80, diffusion=2e-10, shear_velocity_sd=2.0
+    )
     r = LateralDiffusion(u, meta).run().results
     assert r.msd_exponent > 1.5
     assert r.diffusive is False
@@ -86,7 +89,8 @@ def test_sheared_walkers_are_not_diffusion(tmp_path):
 
 
 def test_caged_walkers_are_not_diffusion(tmp_path):
-    # diffusive in form but rms below one diameter: D = 1e-10 m^2/s gives sqrt(2 D 2 ns) = 0.6 nm < 2.5 nm
+    # diffusive in form but rms below one diameter: D = 1e-10 m^2/s gives
+    # sqrt(2 D 2 ns) = 0.6 nm < 2.5 nm
     exp, meta, u = _run(tmp_path, 23, n_walkers=200, n_frames=80, diffusion=1e-10)
     r = LateralDiffusion(u, meta).run().results
     assert 0.8 < r.msd_exponent < 1.2

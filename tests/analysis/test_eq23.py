@@ -25,9 +25,22 @@ NX, DX, DT, NOISE, L_STEP = 40, 2.5e-9, 5e-11, 1e-9, 2.5e-9
 
 
 def synth(rng, *, replicas=1, nt=800, true=TRUE, h0="stationary", noise=NOISE):
-    """h(x, t) of ``replicas`` independent runs, shape (replicas, nt, NX), from the exact OU integrator."""
-    p = TopographyParams(dim=1, grid_points=NX, pixel_size=DX, d0=true["d0_m2_s"], dx_noise=true["dx_l2"] / L_STEP**2,
-                         dz=true["dz"], mu=true["mu_per_s"], l=L_STEP, dt=DT, steps=1)
+    """Return h(x, t) of ``replicas`` independent runs of the exact OU integrator.
+
+    Shape (replicas, nt, NX).
+    """
+    p = TopographyParams(
+        dim=1,
+        grid_points=NX,
+        pixel_size=DX,
+        d0=true["d0_m2_s"],
+        dx_noise=true["dx_l2"] / L_STEP**2,
+        dz=true["dz"],
+        mu=true["mu_per_s"],
+        l=L_STEP,
+        dt=DT,
+        steps=1,
+    )
     st = make_stepper(p, rng=rng, replicas=replicas, h0=h0)
     h = np.empty((replicas, nt, NX))
     for i in range(nt):
@@ -60,9 +73,9 @@ def test_errors_cover_truth_at_their_stated_rate():
         e = np.array([f[f"{c}_err"] for f in fits if f["valid"][c]])
         z = np.abs(v - TRUE[c]) / e
         n = z.size
-        # The errors are jackknife standard errors over 20 blocks (19 dof): nominal coverage of
-        # +-1 err is P(|t_19| < 1) = 0.670 and of +-2 err P(|t_19| < 2) = 0.940.  Allowed: 3 binomial
-        # standard deviations of n runs around these (0.033 and 0.017 for n = 200).
+        # The errors are jackknife standard errors over 20 blocks (19 dof): nominal coverage
+        # of +-1 err is P(|t_19| < 1) = 0.670 and of +-2 err P(|t_19| < 2) = 0.940.  Allowed:
+        # 3 binomial standard deviations of n runs around these (0.033 and 0.017 for n = 200).
         for width, p in ((1.0, 0.670), (2.0, 0.940)):
             cov = float(np.mean(z < width))
             tol = 3 * np.sqrt(p * (1 - p) / n)
@@ -82,12 +95,22 @@ def test_run_too_short_for_the_slow_modes_is_invalid(rng):
 
 
 def test_non_stationary_profile_is_invalid(rng):
-    # start from a roughness 20x the stationary one in every mode (as an MCA run starts from its initial
-    # roughness, several times the steady one): it decays over the first ~1.5 ns
-    # (slow modes) and the two halves of the run differ
+    # start from a roughness 20x the stationary one in every mode (as an MCA run
+    # starts from its initial roughness, several times the steady one): it decays
+    # over the first ~1.5 ns (slow modes) and the two halves of the run differ
     x, t, h = synth(rng, nt=400, h0=None)
-    p = TopographyParams(dim=1, grid_points=NX, pixel_size=DX, d0=TRUE["d0_m2_s"], dx_noise=TRUE["dx_l2"] / L_STEP**2,
-                         dz=TRUE["dz"], mu=TRUE["mu_per_s"], l=L_STEP, dt=DT, steps=1)
+    p = TopographyParams(
+        dim=1,
+        grid_points=NX,
+        pixel_size=DX,
+        d0=TRUE["d0_m2_s"],
+        dx_noise=TRUE["dx_l2"] / L_STEP**2,
+        dz=TRUE["dz"],
+        mu=TRUE["mu_per_s"],
+        l=L_STEP,
+        dt=DT,
+        steps=1,
+    )
     st = make_stepper(p, rng=rng, replicas=1, h0="stationary")
     h0 = 20 * st.heights()[0]
     st.set_state(h0)
@@ -132,5 +155,7 @@ def test_cli_eq23_fit(tmp_path, rng, cli):
     text = cli("analysis", "eq23-fit", tmp_path / "profile.npz")
     assert text.returncode == 0 and "mu_per_s" in text.stdout
     assert_one_line_error(cli("analysis", "eq23-fit", tmp_path / "missing.npz"), "no such file")
-    assert_one_line_error(cli("analysis", "eq23-fit", tmp_path / "profile.npz", "--min-relaxations", "-1"),
-                          "--min-relaxations")
+    assert_one_line_error(
+        cli("analysis", "eq23-fit", tmp_path / "profile.npz", "--min-relaxations", "-1"),
+        "--min-relaxations",
+    )

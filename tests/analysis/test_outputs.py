@@ -7,7 +7,13 @@ import json
 import numpy as np
 import pytest
 
-from tribolmp.analysis.outputs import MCAMeta, open_trajectory, read_friction_csv, read_meta, resume_frames
+from tribolmp.analysis.outputs import (
+    MCAMeta,
+    open_trajectory,
+    read_friction_csv,
+    read_meta,
+    resume_frames,
+)
 from tribolmp.analysis.synthetic import write_dump, write_friction_csv, write_meta
 from tribolmp.errors import DataFileError
 
@@ -21,8 +27,18 @@ def _frames(n_frames=3, lo=(-10.0, 5.0, -0.5), every=100):
         p = pos.copy()
         p[:, 0] += k
         # ids written in reverse order: the reader must sort by id
-        out.append(dict(step=k * every, box=box, mol=mol[::-1], pos=p[::-1], vel=np.ones((4, 3)) * k,
-                        radius=1.25, nbond=np.arange(4)[::-1], id=np.arange(4, 0, -1)))
+        out.append(
+            dict(
+                step=k * every,
+                box=box,
+                mol=mol[::-1],
+                pos=p[::-1],
+                vel=np.ones((4, 3)) * k,
+                radius=1.25,
+                nbond=np.arange(4)[::-1],
+                id=np.arange(4, 0, -1),
+            )
+        )
     return out
 
 
@@ -46,8 +62,8 @@ def test_positions_are_absolute_and_time_is_real(tmp_path):
     np.testing.assert_array_equal(ts.data["c_nbond"], [0, 1, 2, 3])
     # step 200 x 2e-14 s = 4 ps (MDAnalysis time unit), not 200 ps
     assert ts.time == pytest.approx(4.0)
-    # dt is the time between frames (100 steps x 0.02 ps = 2 ps), not the MD timestep (0.02 ps): an MSD
-    # divided by u.trajectory.dt is then per frame interval, not 100x off
+    # dt is the time between frames (100 steps x 0.02 ps = 2 ps), not the MD timestep (0.02
+    # ps): an MSD divided by u.trajectory.dt is then per frame interval, not 100x off
     assert u.trajectory.dt == pytest.approx(2.0)
     assert [t.time for t in u.trajectory] == pytest.approx([0.0, 2.0, 4.0])
     # frame 0 too (read while the Universe is built)
@@ -56,7 +72,8 @@ def test_positions_are_absolute_and_time_is_real(tmp_path):
 
 
 def test_time_of_a_dump_that_starts_late(tmp_path):
-    # a dump appended after a restart starts at step 5000: its times are step x timestep, not frame x dt
+    # a dump appended after a restart starts at step 5000: its times are
+    # step x timestep, not frame x dt
     frames = _frames()
     for k, f in enumerate(frames):
         f["step"] = 5000 + 100 * k

@@ -59,8 +59,14 @@ def _disc_dump(out, radius_nm=1.5):
     box = np.array([[0.0, 50.0], [0.0, 20.0], [-0.5, 0.5]])
     frame = dict(box=box, mol=mol, pos=pos, vel=np.zeros_like(pos), radius=radius_nm, nbond=0)
     write_dump(out / "traj.lammpstrj", [{**frame, "step": 0}, {**frame, "step": 100}])
-    write_meta(out, dt_s=1e-15, dump_interval_steps=100, velocity_m_s=5.0, diameter_m=2 * radius_nm * 1e-9,
-               box_m=box * 1e-9)
+    write_meta(
+        out,
+        dt_s=1e-15,
+        dump_interval_steps=100,
+        velocity_m_s=5.0,
+        diameter_m=2 * radius_nm * 1e-9,
+        box_m=box * 1e-9,
+    )
     return xs.size
 
 
@@ -76,9 +82,14 @@ def test_snapshot_draws_discs_of_the_true_diameter(tmp_path):
 
     r_nm = 1.5
     n_per_row = _disc_dump(tmp_path / "run", r_nm)
-    for dpi in (60, 120):  # the disc size must not depend on the resolution (markers in points would)
+    for dpi in (
+        60,
+        120,
+    ):  # the disc size must not depend on the resolution (markers in points would)
         fig, ax = plt.subplots(figsize=(8, 4), dpi=dpi)
-        plot_snapshot(tmp_path / "run" / "traj.lammpstrj", ax=ax)  # the dump path works as well as the dir
+        plot_snapshot(
+            tmp_path / "run" / "traj.lammpstrj", ax=ax
+        )  # the dump path works as well as the dir
         fig.canvas.draw()
         img = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(float) / 255
         bb = ax.get_window_extent()
@@ -89,8 +100,9 @@ def test_snapshot_draws_discs_of_the_true_diameter(tmp_path):
         for mol in (2, 3):
             hit = np.all(np.abs(inside - to_rgb(BODY_COLOURS[mol][0])) < 0.06, axis=-1).sum()
             area = hit / px_per_nm2
-            # the anti-aliased rim (~0.5 px around discs 22 px (dpi 60) / 45 px (dpi 120) across) is not
-            # counted: measured -8 % / -4 %; 15 % leaves margin for renderer details. Markers of a few
-            # points (scatter s=3, the tiny dots of the chain report's figure) would cover < 1 %
+            # the anti-aliased rim (~0.5 px around discs 22 px (dpi 60) / 45 px
+            # (dpi 120) across) is not counted: measured -8 % / -4 %; 15 % leaves
+            # margin for renderer details. Markers of a few points (scatter s=3,
+            # the tiny dots of the chain report's figure) would cover < 1 %
             assert area == pytest.approx(n_per_row * np.pi * r_nm**2, rel=0.15), (dpi, mol)
         plt.close(fig)

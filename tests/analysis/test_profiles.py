@@ -6,7 +6,12 @@ import numpy as np
 import pytest
 
 from tribolmp.analysis.outputs import open_trajectory, read_meta
-from tribolmp.analysis.profiles import CompositionProfile, VelocityProfile, interface_height, layer_width
+from tribolmp.analysis.profiles import (
+    CompositionProfile,
+    VelocityProfile,
+    interface_height,
+    layer_width,
+)
 from tribolmp.analysis.synthetic import erf_width, make_shear_mixing
 from tribolmp.errors import ParameterError
 
@@ -96,11 +101,21 @@ def test_single_slip_plane_is_not_a_resolved_layer(tmp_path):
 
 @pytest.fixture(scope="module")
 def wavy(tmp_path_factory):
-    # a thin layer (sigma 1.5 nm) on a wavy slip line (amplitude 4 nm), and a frame-0 interface as rough
+    # a thin layer (sigma 1.5 nm) on a wavy slip line (amplitude 4 nm), and
+    # a frame-0 interface as rough
     out = tmp_path_factory.mktemp("wavy")
-    expected = make_shear_mixing(out, np.random.default_rng(8), n_atoms=12000, n_frames=8, length=80e-9,
-                                 sigma_v=1.5e-9, sigma_c=1.5e-9, offset_v=0.0, wave_amplitude=4e-9,
-                                 roughness_amplitude=4e-9)
+    expected = make_shear_mixing(
+        out,
+        np.random.default_rng(8),
+        n_atoms=12000,
+        n_frames=8,
+        length=80e-9,
+        sigma_v=1.5e-9,
+        sigma_c=1.5e-9,
+        offset_v=0.0,
+        wave_amplitude=4e-9,
+        roughness_amplitude=4e-9,
+    )
     meta = read_meta(out)
     return out, meta, open_trajectory(out, meta), expected
 
@@ -110,8 +125,8 @@ def test_wavy_slip_line_is_not_a_layer(wavy):
     r = VelocityProfile(u, meta, bin_width_m=1e-9, column_width_m=2.5e-9).run(start=1).results
     # x-averaged: the waviness (peak-to-peak 8 nm) broadens the 3.8 nm layer to ~7 nm
     assert r.layer_depth_m > 1.5 * exp["layer_depth_m"]
-    # per column (2.5 nm): the sine shifts by <= 0.8 nm within a column (+3 % in quadrature), binning
-    # adds ~2 % (see above) and 32 columns x 7 frames leave ~4 % scatter: 12 % bounds them
+    # per column (2.5 nm): the sine shifts by <= 0.8 nm within a column (+3 % in quadrature),
+    # binning adds ~2 % (see above) and 32 columns x 7 frames leave ~4 % scatter: 12 % bounds them
     assert r.layer_depth_columns_m == pytest.approx(exp["layer_depth_m"], rel=0.12)
     assert r.layer_depth_columns_err_m < 0.1 * r.layer_depth_columns_m
 
@@ -119,14 +134,18 @@ def test_wavy_slip_line_is_not_a_layer(wavy):
 def test_initial_roughness_is_not_mixing(wavy):
     out, meta, u, exp = wavy
     r = CompositionProfile(u, meta, bin_width_m=1e-9, column_width_m=2.5e-9).run(start=1).results
-    # frame 0 is unmixed but rough: its x-averaged 10-90 % width is that of the sine, 2 A sin(0.4 pi) = 7.6 nm
+    # frame 0 is unmixed but rough: its x-averaged 10-90 % width is that of
+    # the sine, 2 A sin(0.4 pi) = 7.6 nm
     assert r.mixed_width_frame0_m == pytest.approx(2 * 4e-9 * np.sin(0.4 * np.pi), rel=0.15)
-    # per column, frame 0 is a sharp step, broadened only by the bins (~0.8 bin) and the sine's shift
-    # within a 2.5 nm column (<= 0.8 nm): about 1.6 nm, far below the x-averaged 7.6 nm
+    # per column, frame 0 is a sharp step, broadened only by the bins (~0.8 bin) and the sine's
+    # shift within a 2.5 nm column (<= 0.8 nm): about 1.6 nm, far below the x-averaged 7.6 nm
     w0 = np.nanmean(r.column_mixed_width_frame0_m)
     assert w0 < 2.0e-9
-    # the per-column excess is the mixing width minus that floor (subtracted linearly, a lower bound)
-    assert r.mixed_width_columns_m == pytest.approx(np.nanmean(r.column_mixed_width_m) - w0, rel=1e-9)
+    # the per-column excess is the mixing width minus that floor (subtracted
+    # linearly, a lower bound)
+    assert r.mixed_width_columns_m == pytest.approx(
+        np.nanmean(r.column_mixed_width_m) - w0, rel=1e-9
+    )
     assert exp["mixed_width_m"] - w0 - 1e-9 < r.mixed_width_columns_m < exp["mixed_width_m"]
     # the x-averaged width without the subtraction counts the waviness as mixing
     assert r.mixed_width_m > 1.5 * exp["mixed_width_m"]

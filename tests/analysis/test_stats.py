@@ -18,7 +18,9 @@ from tribolmp.analysis.synthetic import ar1_mean_stderr
 
 def test_msd_fft_equals_direct_average(rng):
     x = np.cumsum(rng.standard_normal((50, 7, 2)), axis=0)
-    direct = np.array([np.mean(np.sum((x[lag:] - x[: x.shape[0] - lag]) ** 2, axis=2)) for lag in range(50)])
+    direct = np.array(
+        [np.mean(np.sum((x[lag:] - x[: x.shape[0] - lag]) ** 2, axis=2)) for lag in range(50)]
+    )
     # identical algebra, only floating-point round-off differs
     np.testing.assert_allclose(msd_fft(x), direct, rtol=1e-10, atol=1e-10)
 
@@ -51,8 +53,9 @@ def test_mser_finds_the_end_of_a_transient(rng):
     y = 0.05 * rng.standard_normal(n)
     y[:300] += 1.0  # a step transient of 300 samples
     d, steady = mser_truncation(y)
-    # every batch of the step must go (a kept one would add ~20 sigma); MSER may cut a few noisy
-    # batches more when that lowers the marginal standard error: allow 10 batches (2.5 % of the data)
+    # every batch of the step must go (a kept one would add ~20 sigma); MSER
+    # may cut a few noisy batches more when that lowers the marginal
+    # standard error: allow 10 batches (2.5 % of the data)
     assert 300 <= d <= 350 and steady
     # a steadily drifting series never settles: the minimum sits at the search limit
     d2, steady2 = mser_truncation(np.linspace(0, 1, n) + 0.01 * rng.standard_normal(n))
@@ -73,7 +76,8 @@ def test_block_standard_error_matches_ar1_theory():
         assert converged
         errs.append(se)
     exact = ar1_mean_stderr(phi, sig, n)
-    # blocking estimates scatter by ~sqrt(2/n_blocks) ~ 20 %; the mean of 8 by ~7 %: 25 % is > 3 sigma
+    # blocking estimates scatter by ~sqrt(2/n_blocks) ~ 20 %; the mean of 8
+    # by ~7 %: 25 % is > 3 sigma
     assert np.mean(errs) == pytest.approx(exact, rel=0.25)
     # the naive i.i.d. error would be 4.4x smaller: the test separates the two
     assert np.mean(errs) > 2.5 * np.sqrt(1 / (1 - phi**2) / n)
@@ -82,4 +86,6 @@ def test_block_standard_error_matches_ar1_theory():
 def test_linear_fit_exact_line():
     t = np.arange(10.0)
     a, b, se = linear_fit(t, 3.0 * t - 2.0)
-    assert a == pytest.approx(3.0) and b == pytest.approx(-2.0) and se == pytest.approx(0.0, abs=1e-12)
+    assert (
+        a == pytest.approx(3.0) and b == pytest.approx(-2.0) and se == pytest.approx(0.0, abs=1e-12)
+    )

@@ -1,17 +1,29 @@
-"""SurfaceProfile: the lower body's column-mass height h(x, t) against stacked columns of known height."""
+"""SurfaceProfile: the lower body's column-mass height h(x, t).
+
+Checked against stacked columns of known height.
+"""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from tribolmp.analysis.outputs import MOL_BASE, MOL_LOWER, MOL_SLIDER, MOL_UPPER, open_trajectory, read_meta
+from tribolmp.analysis.outputs import (
+    MOL_BASE,
+    MOL_LOWER,
+    MOL_SLIDER,
+    MOL_UPPER,
+    open_trajectory,
+    read_meta,
+)
 from tribolmp.analysis.surface import SurfaceProfile
 from tribolmp.analysis.synthetic import write_dump, write_meta
 
 
 def _columns(out, heights_per_frame, d=2.5, n_upper=4):
-    """Square lattice (spacing d nm): column j of the lower side holds heights[j] automata (base row included),
+    """Square lattice (spacing d nm) with columns of given heights.
+
+    Column j of the lower side holds heights[j] automata (base row included),
     an upper body of n_upper rows sits on top of the highest column, a slider row above.
     """
     nx = heights_per_frame.shape[1]
@@ -30,9 +42,18 @@ def _columns(out, heights_per_frame, d=2.5, n_upper=4):
                 mol.append(MOL_SLIDER if i == n_upper else MOL_UPPER)
         pos = np.asarray(pos)
         n = pos.shape[0]
-        frames.append(dict(step=1000 * k, box=np.array([[0, L], [0, (top + n_upper + 1) * d], [-0.5, 0.5]]),
-                           mol=np.asarray(mol), pos=pos, vel=np.zeros((n, 3)), radius=d / 2, nbond=4,
-                           id=np.arange(1, n + 1)))
+        frames.append(
+            dict(
+                step=1000 * k,
+                box=np.array([[0, L], [0, (top + n_upper + 1) * d], [-0.5, 0.5]]),
+                mol=np.asarray(mol),
+                pos=pos,
+                vel=np.zeros((n, 3)),
+                radius=d / 2,
+                nbond=4,
+                id=np.arange(1, n + 1),
+            )
+        )
     write_dump(out / "traj.lammpstrj", frames)
     write_meta(out, dt_s=1e-13, dump_interval_steps=1000, velocity_m_s=5.0, diameter_m=d * 1e-9,
                box_m=frames[0]["box"] * 1e-9)
@@ -42,7 +63,9 @@ def test_column_mass_height_is_exact_for_stacked_columns(tmp_path, rng):
     nx, nt, d = 16, 5, 2.5
     base = 12
     heights = base + rng.integers(-2, 3, size=(nt, nx))
-    heights[0] = base + np.array([0, 1, 2, 1, 0, -1, -2, -1] * 2)  # frame 0: the bulk below 10 rows is full
+    heights[0] = base + np.array(
+        [0, 1, 2, 1, 0, -1, -2, -1] * 2
+    )  # frame 0: the bulk below 10 rows is full
     # the automaton count must stay the same in every frame (the dump contract): pad the last column
     total = heights[0].sum()
     heights[1:, -1] += total - heights[1:].sum(axis=1)

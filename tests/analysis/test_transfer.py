@@ -42,13 +42,29 @@ def test_transfer_and_wear_exactly(scripted):
     r = MassTransfer(u, meta, window=1).run().results
     # default persistence: the slider moves 2 d = 5 nm, 5 frames at 1 nm/frame
     assert r.persistence_frames == 5
-    for key in ("transfer_events", "detach_events", "return_events", "n_surface", "net_transfer_lower_to_upper",
-                "wear_lower", "wear_upper"):
+    for key in (
+        "transfer_events",
+        "detach_events",
+        "return_events",
+        "n_surface",
+        "net_transfer_lower_to_upper",
+        "wear_lower",
+        "wear_upper",
+    ):
         assert r[key] == exp[key], key
     # noise-free motion: rates are exact up to round-off of the float32 positions
-    for key in ("span_s", "sliding_distance_m", "transfer_per_s", "transfer_per_s_err", "transfer_per_m",
-                "transfer_rate", "wear_lower_per_s", "wear_lower_per_s_err", "wear_upper_per_m",
-                "wear_upper_per_m_err"):
+    for key in (
+        "span_s",
+        "sliding_distance_m",
+        "transfer_per_s",
+        "transfer_per_s_err",
+        "transfer_per_m",
+        "transfer_rate",
+        "wear_lower_per_s",
+        "wear_lower_per_s_err",
+        "wear_upper_per_m",
+        "wear_upper_per_m_err",
+    ):
         assert r[key] == pytest.approx(exp[key], rel=1e-4), key
     assert r.crossed_lower_up[-1] == exp["crossed_lower_up"]
     assert r.crossed_upper_down[-1] == exp["crossed_upper_down"]
@@ -57,8 +73,9 @@ def test_transfer_and_wear_exactly(scripted):
 
 def test_short_visits_are_not_transfer(scripted):
     meta, u, exp = scripted
-    # with no persistence every instantaneous flip counts: the 3 two-frame flickers to the upper body
-    # become 3 transfers and 3 returns -- what the velocity-state count of the old analysis reported
+    # with no persistence every instantaneous flip counts: the 3 two-frame
+    # flickers to the upper body become 3 transfers and 3 returns -- what
+    # the velocity-state count of the old analysis reported
     r1 = MassTransfer(u, meta, window=1, persistence_s=0.0).run().results
     assert r1.transfer_events == exp["transfer_events"] + exp["flicker_events"]
     assert r1.return_events == exp["return_events"] + exp["flicker_events"]
@@ -80,7 +97,8 @@ def test_persistent_membership_by_hand():
     states = np.array([[L, U], [U, U], [U, L], [L, L], [U, L], [U, L], [U, L]])
     own = np.array([L, U])
     mem = persistent_membership(states, own, 3)
-    # automaton 0: the 2-frame visit to U is ignored; the 3-frame run from frame 4 is accepted at frame 4
+    # automaton 0: the 2-frame visit to U is ignored; the 3-frame run from
+    # frame 4 is accepted at frame 4
     np.testing.assert_array_equal(mem[:, 0], [L, L, L, L, U, U, U])
     # automaton 1: its run of L from frame 2 lasts 5 frames: member of the lower body from frame 2
     np.testing.assert_array_equal(mem[:, 1], [U, U, L, L, L, L, L])
@@ -112,8 +130,8 @@ def test_count_events_by_hand():
 def _linked_run(out, with_links: bool):
     """Write and analyse rigid bodies whose two lower automata weld to the upper body at frame 10.
 
-    The lower body rests, the upper body and slider move at V; from frame 10 on, two lower-body automata
-    have all their links to the upper body while still moving with the lower body.
+    The lower body rests, the upper body and slider move at V; from frame 10 on, two lower-body
+    automata have all their links to the upper body while still moving with the lower body.
     """
     from tribolmp.analysis.synthetic import write_dump, write_meta
 
@@ -130,11 +148,21 @@ def _linked_run(out, with_links: bool):
         cross = np.zeros(h.size, dtype=int)
         if k >= 10:
             cross[welded] = 4
-        extra = {"f_mca_state[8]": np.full(h.size, 4), "f_mca_state[9]": cross} if with_links else None
-        frames.append(dict(step=1000 * k, box=np.array([[0, n_row * d], [0, 6 * d], [-0.5, 0.5]]), mol=mol,
-                           pos=np.column_stack([x, h, np.zeros(h.size)]),
-                           vel=np.column_stack([np.where(moving, V, 0.0), np.zeros(h.size), np.zeros(h.size)]),
-                           radius=d / 2, nbond=4, extra=extra))
+        extra = (
+            {"f_mca_state[8]": np.full(h.size, 4), "f_mca_state[9]": cross} if with_links else None
+        )
+        frames.append(
+            dict(
+                step=1000 * k,
+                box=np.array([[0, n_row * d], [0, 6 * d], [-0.5, 0.5]]),
+                mol=mol,
+                pos=np.column_stack([x, h, np.zeros(h.size)]),
+                vel=np.column_stack([np.where(moving, V, 0.0), np.zeros(h.size), np.zeros(h.size)]),
+                radius=d / 2,
+                nbond=4,
+                extra=extra,
+            )
+        )
     write_dump(out / "traj.lammpstrj", frames)
     write_meta(out, dt_s=1e-13, dump_interval_steps=1000, velocity_m_s=V, diameter_m=d * 1e-9,
                box_m=frames[0]["box"] * 1e-9)
@@ -145,7 +173,8 @@ def _linked_run(out, with_links: bool):
 def test_links_to_the_other_body_are_membership(tmp_path):
     (tmp_path / "a").mkdir()
     (tmp_path / "b").mkdir()
-    # with the mca law's per-automaton link columns: the two welded automata are members of the upper body
+    # with the mca law's per-automaton link columns: the two welded automata
+    # are members of the upper body
     r = _linked_run(tmp_path / "a", with_links=True)
     assert r.membership_source.startswith("velocity and links")
     assert r.transfer_events == 2 and r.wear_lower == 2 and r.wear_upper == -2

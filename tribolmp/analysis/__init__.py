@@ -25,7 +25,10 @@ construct with ``(universe, meta)`` or ``Class.from_output(out_dir)``, then
 
 
 def read_atoms(dump, index=-1, *, meta=None):
-    """Frames of an MCA dump as ASE ``Atoms`` in ASE units; see :func:`tribolmp.analysis.handoff.read_atoms`."""
+    """Frames of an MCA dump as ASE ``Atoms`` in ASE units.
+
+    See :func:`tribolmp.analysis.handoff.read_atoms`.
+    """
     from .handoff import read_atoms as _read_atoms
 
     return _read_atoms(dump, index, meta=meta)

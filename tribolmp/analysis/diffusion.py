@@ -42,7 +42,7 @@ class Unwrapper:
 
 
 def surface_selection(heights, mols, y0, depth) -> np.ndarray:
-    """Indices of lower/upper-body automata within ``depth`` of the interface ``y0``."""
+    """Return indices of lower/upper-body automata within ``depth`` of the interface ``y0``."""
     heights = np.asarray(heights, dtype=float)
     mols = np.asarray(mols)
     near = np.abs(heights - y0) < depth
@@ -108,7 +108,9 @@ class LateralDiffusion(FromOutput, AnalysisBase):
         super().__init__(universe.trajectory, **kwargs)
         self._meta = meta
         depth = 2 * meta.automaton_diameter_m if surface_depth_m is None else surface_depth_m
-        self._depth_nm = check_range("surface_depth_m", depth, 0.0, None, lo_open=True, unit="m") / NM
+        self._depth_nm = (
+            check_range("surface_depth_m", depth, 0.0, None, lo_open=True, unit="m") / NM
+        )
         if reference not in ("group", "body", "anchor"):
             raise ParameterError("reference", "one of ['group', 'body', 'anchor']", reference)
         self._reference = reference
@@ -141,8 +143,10 @@ class LateralDiffusion(FromOutput, AnalysisBase):
         self._sel_mol = self._mols[self._sel]
         if min((self._sel_mol == MOL_LOWER).sum(), (self._sel_mol == MOL_UPPER).sum()) < 2:
             raise DataFileError(
-                "trajectory: surface automata: expected >= 2 per body within surface_depth_m of the interface, "
-                f"got {(self._sel_mol == MOL_LOWER).sum()} lower and {(self._sel_mol == MOL_UPPER).sum()} upper"
+                "trajectory: surface automata: expected >= 2 per "
+                "body within surface_depth_m of the interface, "
+                f"got {(self._sel_mol == MOL_LOWER).sum()} lower "
+                f"and {(self._sel_mol == MOL_UPPER).sum()} upper"
             )
         n, k = self.n_frames, len(self._lat)
         self._xsel = np.zeros((n, self._sel.size, k))
@@ -168,7 +172,10 @@ class LateralDiffusion(FromOutput, AnalysisBase):
             else:
                 m = np.nonzero(self._mols == anchor)[0]
                 if m.size == 0:
-                    raise DataFileError(f"trajectory: mol {anchor}: expected anchor automata for reference='anchor', got none")
+                    raise DataFileError(
+                        f"trajectory: mol {anchor}: expected anchor "
+                        "automata for reference='anchor', got none"
+                    )
             self._ref[body][i] = xu[m].mean(axis=0)
         self._time[i] = ts.time * 1e-12
 
@@ -197,7 +204,10 @@ class LateralDiffusion(FromOutput, AnalysisBase):
         return use
 
     def _regime(self, lag, msd):
-        """(log-slope of MSD against lag over the fit window, rms displacement at its end (m), window (s))."""
+        """Return the MSD regime over the fit window.
+
+        (log-slope of MSD against lag, rms displacement at the window's end (m), window (s)).
+        """
         use = self._window(lag) & (msd > 0)
         if use.sum() < 2:
             return float("nan"), float("nan"), [float("nan"), float("nan")]
@@ -209,7 +219,9 @@ class LateralDiffusion(FromOutput, AnalysisBase):
         r = self.results
         T = self.n_frames
         if T < 4:
-            raise DataFileError(f"trajectory: frames: expected >= 4 analysed frames for an MSD, got {T}")
+            raise DataFileError(
+                f"trajectory: frames: expected >= 4 analysed frames for an MSD, got {T}"
+            )
         lag = self._time[:T] - self._time[0]
         out = {}
         for body, name in ((MOL_LOWER, "lower"), (MOL_UPPER, "upper")):
@@ -228,11 +240,16 @@ class LateralDiffusion(FromOutput, AnalysisBase):
         d = self._meta.automaton_diameter_m
         reasons = []
         if not (np.isfinite(alpha) and self._alpha_range[0] <= alpha <= self._alpha_range[1]):
-            reasons.append(f"MSD grows as t^{alpha:.2f} over the fit window (diffusion needs an exponent in "
-                           f"[{self._alpha_range[0]:g}, {self._alpha_range[1]:g}]; > 1.2: ballistic or shear dispersion)")
+            reasons.append(
+                f"MSD grows as t^{alpha:.2f} over the fit window (diffusion needs an exponent in "
+                f"[{self._alpha_range[0]:g}, {self._alpha_range[1]:g}]; "
+                "> 1.2: ballistic or shear dispersion)"
+            )
         if not rms > d:
-            reasons.append(f"rms displacement {rms:.3g} m at the end of the fit window is below one automaton "
-                           f"diameter {d:.3g} m (no escape from the cage)")
+            reasons.append(
+                f"rms displacement {rms:.3g} m at the end of the fit window is below one automaton "
+                f"diameter {d:.3g} m (no escape from the cage)"
+            )
         r.lag_s = lag
         r.msd_m2 = msd_all
         r.msd_lower_m2 = out["lower"][0]
@@ -251,4 +268,9 @@ class LateralDiffusion(FromOutput, AnalysisBase):
         r.lateral_dims = len(self._lat)
         r.interface_height_m = self._y0 * NM
         r.reference = self._reference
-        r.units = {"lag_s": "s", "msd_m2": "m^2", "diffusion_m2_s": "m^2/s", "diffusion_err_m2_s": "m^2/s"}
+        r.units = {
+            "lag_s": "s",
+            "msd_m2": "m^2",
+            "diffusion_m2_s": "m^2/s",
+            "diffusion_err_m2_s": "m^2/s",
+        }

@@ -54,7 +54,14 @@ import numpy as np
 
 from ..errors import DataFileError, ParameterError
 
-__all__ = ["fit_eq23", "mode_statistics", "write_profile", "read_profile", "EQ23_UNITS", "COEFFICIENTS"]
+__all__ = [
+    "fit_eq23",
+    "mode_statistics",
+    "write_profile",
+    "read_profile",
+    "EQ23_UNITS",
+    "COEFFICIENTS",
+]
 
 #: The C1 coefficient names, in order.
 COEFFICIENTS = ("mu_per_s", "d0_m2_s", "dz", "dx_l2")
@@ -90,7 +97,10 @@ def write_profile(path, x, t, h, **extra) -> Path:
 
 
 def read_profile(path) -> dict[str, np.ndarray]:
-    """Read and check a ``profile.npz``; returns a dict with ``x``, ``t``, ``h`` (SI) and any extras."""
+    """Read and check a ``profile.npz``.
+
+    Returns a dict with ``x``, ``t``, ``h`` (SI) and any extras.
+    """
     path = Path(path)
     if not path.exists():
         raise DataFileError(f"{path}: expected a profile.npz, got no such file")
@@ -98,11 +108,18 @@ def read_profile(path) -> dict[str, np.ndarray]:
         with np.load(path, allow_pickle=False) as z:
             data = {k: z[k] for k in z.files}
     except (ValueError, OSError) as exc:
-        raise DataFileError(f"{path}: expected a numpy .npz archive, got unreadable data ({' '.join(str(exc).split())[:80]})") from None
+        raise DataFileError(
+            f"{path}: expected a numpy .npz archive, got "
+            f"unreadable data ({' '.join(str(exc).split())[:80]})"
+        ) from None
     for key in ("x", "t", "h"):
         if key not in data:
-            raise DataFileError(f"{path}: {key}: expected arrays x [m], t [s], h [m], got keys {sorted(data)}")
-    data["x"], data["t"], data["h"] = _check_profile(data["x"], data["t"], data["h"], source=str(path))
+            raise DataFileError(
+                f"{path}: {key}: expected arrays x [m], t [s], h [m], got keys {sorted(data)}"
+            )
+    data["x"], data["t"], data["h"] = _check_profile(
+        data["x"], data["t"], data["h"], source=str(path)
+    )
     return data
 
 
@@ -111,19 +128,27 @@ def _check_profile(x, t, h, source: str = "profile"):
     t = np.asarray(t, dtype=float)
     h = np.asarray(h, dtype=float)
     if x.ndim != 1 or x.size < 4:
-        raise DataFileError(f"{source}: x: expected a 1D array of >= 4 positions (m), got shape {x.shape}")
+        raise DataFileError(
+            f"{source}: x: expected a 1D array of >= 4 positions (m), got shape {x.shape}"
+        )
     if t.ndim != 1 or t.size < 2:
-        raise DataFileError(f"{source}: t: expected a 1D array of >= 2 times (s), got shape {t.shape}")
+        raise DataFileError(
+            f"{source}: t: expected a 1D array of >= 2 times (s), got shape {t.shape}"
+        )
     if h.shape != (t.size, x.size):
-        raise DataFileError(f"{source}: h: expected shape (nt, nx) = ({t.size}, {x.size}), got {h.shape}")
+        raise DataFileError(
+            f"{source}: h: expected shape (nt, nx) = ({t.size}, {x.size}), got {h.shape}"
+        )
     for name, a in (("x", x), ("t", t), ("h", h)):
         if not np.all(np.isfinite(a)):
             raise DataFileError(f"{source}: {name}: expected finite numbers, got NaN/inf")
     for name, a in (("x", x), ("t", t)):
         d = np.diff(a)
         if not np.all(d > 0) or not np.allclose(d, d.mean(), rtol=1e-6, atol=0):
-            raise DataFileError(f"{source}: {name}: expected uniformly spaced increasing values, got spacings "
-                                f"{d.min():.6g} ... {d.max():.6g}")
+            raise DataFileError(
+                f"{source}: {name}: expected uniformly spaced increasing values, got spacings "
+                f"{d.min():.6g} ... {d.max():.6g}"
+            )
     return x, t, h
 
 
@@ -162,7 +187,9 @@ def _autocov_fft(z: np.ndarray, max_lag: int) -> np.ndarray:
     return ac / (nt - np.arange(max_lag + 1))[:, None]
 
 
-def mode_statistics(t, hk, *, dx: float, n_points: int, first_lag: int = 1, n_blocks: int = 10) -> dict:
+def mode_statistics(
+    t, hk, *, dx: float, n_points: int, first_lag: int = 1, n_blocks: int = 10
+) -> dict:
     """gamma(k), S(k) and S gamma per mode, with jackknife errors.
 
     Parameters
@@ -219,12 +246,13 @@ def mode_statistics(t, hk, *, dx: float, n_points: int, first_lag: int = 1, n_bl
     def jk_err(idx):
         vals = np.array([r[idx] for r in jk])
         with np.errstate(invalid="ignore"):
-            return np.sqrt((n_blocks - 1) / n_blocks * ((vals - vals.mean(axis=0)) ** 2).sum(axis=0))
+            return np.sqrt(
+                (n_blocks - 1) / n_blocks * ((vals - vals.mean(axis=0)) ** 2).sum(axis=0)
+            )
 
-
-
-    # stationarity: mean |hat h|^2 of each half, and its relative sd for a stationary OU process
-    # sampled at dt: var(mean |z|^2) = (C0^2 + 2 sum_{j>=1} |C(j)|^2) / N, with C(j) = S a^j (j >= 1)
+    # stationarity: mean |hat h|^2 of each half, and its relative sd for a
+    # stationary OU process sampled at dt: var(mean |z|^2) = (C0^2 + 2
+    # sum_{j>=1} |C(j)|^2) / N, with C(j) = S a^j (j >= 1)
     half = nt // 2
     p = (np.abs(z) ** 2) * norm
     powers = np.vstack([p[:half].mean(axis=0), p[half:].mean(axis=0)])
@@ -234,8 +262,16 @@ def mode_statistics(t, hk, *, dx: float, n_points: int, first_lag: int = 1, n_bl
         tail = 2 * np.where(np.isfinite(S), S, 0.0) ** 2 * a**2 / np.maximum(1 - a**2, 1e-300)
         rel = np.vstack([np.sqrt((c0**2 + tail) / n) / c0 for n in (half, nt - half)])
     return {
-        "gamma": g, "gamma_err": jk_err(0), "psd": S, "psd_err": jk_err(1), "s_gamma": Sg,
-        "s_gamma_err": jk_err(2), "lag2": j2, "ok": ok, "power_halves": powers, "power_halves_rel_sd": rel,
+        "gamma": g,
+        "gamma_err": jk_err(0),
+        "psd": S,
+        "psd_err": jk_err(1),
+        "s_gamma": Sg,
+        "s_gamma_err": jk_err(2),
+        "lag2": j2,
+        "ok": ok,
+        "power_halves": powers,
+        "power_halves_rel_sd": rel,
     }
 
 
@@ -255,7 +291,13 @@ def _wls(k2, y, err):
     resid = y - As @ coef_s
     chi2 = float((w * resid**2).sum())
     scale = np.array([1.0, 1.0 / s])
-    return float(coef_s[0] * scale[0]), float(coef_s[1] * scale[1]), cov_s * np.outer(scale, scale), chi2, k2.size - 2
+    return (
+        float(coef_s[0] * scale[0]),
+        float(coef_s[1] * scale[1]),
+        cov_s * np.outer(scale, scale),
+        chi2,
+        k2.size - 2,
+    )
 
 
 def _smooth_errors(k, err):
@@ -319,8 +361,11 @@ def fit_eq23(x, t, h, *, start_s: float | None = None, first_lag: int = 1, n_blo
     if start_s is not None:
         keep = t >= float(start_s)
         if keep.sum() < 2 * max(4, n_blocks):
-            raise DataFileError(f"profile: t: expected >= {2 * max(4, n_blocks)} frames after start_s = {start_s:g} s, "
-                                f"got {int(keep.sum())}")
+            raise DataFileError(
+                f"profile: t: expected >= {2 * max(4, n_blocks)} "
+                f"frames after start_s = {start_s:g} s, "
+                f"got {int(keep.sum())}"
+            )
         t, h = t[keep], h[keep]
     if not (isinstance(first_lag, (int, np.integer)) and first_lag >= 0):
         raise ParameterError("first_lag", "an integer >= 0 (frames)", first_lag)
@@ -330,7 +375,10 @@ def fit_eq23(x, t, h, *, start_s: float | None = None, first_lag: int = 1, n_blo
         raise ParameterError("min_modes", "an integer >= 3", min_modes)
     nt, nx = h.shape
     if nt < 4 * n_blocks:
-        raise DataFileError(f"profile: t: expected >= {4 * n_blocks} frames for {n_blocks} jackknife blocks, got {nt}")
+        raise DataFileError(
+            f"profile: t: expected >= {4 * n_blocks} frames "
+            f"for {n_blocks} jackknife blocks, got {nt}"
+        )
     dx = float(x[1] - x[0])
     L = nx * dx
     dt = float(t[1] - t[0])
@@ -340,32 +388,40 @@ def fit_eq23(x, t, h, *, start_s: float | None = None, first_lag: int = 1, n_blo
         m = m[: int(max_modes)]
     k = 2 * np.pi * m / L
     hk = np.fft.rfft(h, axis=1)[:, m]
-    st = mode_statistics(t, hk, dx=dx, n_points=nx, first_lag=int(first_lag), n_blocks=int(n_blocks))
+    st = mode_statistics(
+        t, hk, dx=dx, n_points=nx, first_lag=int(first_lag), n_blocks=int(n_blocks)
+    )
     g, ge = st["gamma"], st["gamma_err"]
     se = st["s_gamma_err"]
     base_bad = ~st["ok"] | ~np.isfinite(g) | (g <= 0)
 
     def select(rate, rate_err):
-        # rate +- rate_err: the relaxation rate each mode is judged by.  "Enough relaxation times" must hold
-        # at the 2-sigma lower bound of the rate: a short run measures gamma poorly, and its noisy estimate
-        # alone would pass the test about half of the time.
+        # rate +- rate_err: the relaxation rate each mode is judged by.  "Enough relaxation
+        # times" must hold at the 2-sigma lower bound of the rate: a short run measures gamma
+        # poorly, and its noisy estimate alone would pass the test about half of the time.
         reason = np.full(m.size, "", dtype=object)
         with np.errstate(invalid="ignore"):
             lower = rate - 2 * rate_err
             checks = [
                 (base_bad, "autocovariance not positive at both lags (no decay measured)"),
                 (rate * dt > max_gamma_dt, f"faster than the frames: gamma dt > {max_gamma_dt:g}"),
-                (~(lower * T >= min_relaxations),
-                 f"run shorter than {min_relaxations:g} relaxation times (at the 2-sigma lower bound of gamma)"),
-                (~(ge < np.abs(g)) | ~(se < np.abs(st["s_gamma"])), "relative jackknife error >= 1"),
+                (
+                    ~(lower * T >= min_relaxations),
+                    f"run shorter than {min_relaxations:g} relaxation "
+                    "times (at the 2-sigma lower bound of gamma)",
+                ),
+                (
+                    ~(ge < np.abs(g)) | ~(se < np.abs(st["s_gamma"])),
+                    "relative jackknife error >= 1",
+                ),
             ]
         for bad, why in checks:
             reason[(reason == "") & bad] = why
         return reason
 
-    # Pass 1 judges each mode by its own gamma; pass 2 by the fitted gamma(k) = mu + D0 k^2, so that the
-    # selection does not depend on each mode's own noise (selecting on the noisy estimate keeps, near the
-    # cut-offs, the modes whose gamma happened to come out low, and biases D0 low).
+    # Pass 1 judges each mode by its own gamma; pass 2 by the fitted gamma(k) = mu + D0 k^2, so
+    # that the selection does not depend on each mode's own noise (selecting on the noisy estimate
+    # keeps, near the cut-offs, the modes whose gamma happened to come out low, and biases D0 low).
     reason = select(g, ge)
     used = reason == ""
     if used.sum() >= 3:
@@ -373,7 +429,9 @@ def fit_eq23(x, t, h, *, start_s: float | None = None, first_lag: int = 1, n_blo
         a0, b0, cov0, chi0, dof0 = _wls(k[used] ** 2, g[used], e1)
         birge0 = max(1.0, math.sqrt(chi0 / dof0)) if dof0 > 0 else 1.0
         model = a0 + b0 * k**2
-        model_err = birge0 * np.sqrt(np.clip(cov0[0, 0] + 2 * cov0[0, 1] * k**2 + cov0[1, 1] * k**4, 0, None))
+        model_err = birge0 * np.sqrt(
+            np.clip(cov0[0, 0] + 2 * cov0[0, 1] * k**2 + cov0[1, 1] * k**4, 0, None)
+        )
         if np.all(np.isfinite(model)) and np.all(model > 0):
             reason2 = select(model, model_err)
             if (reason2 == "").sum() >= 2:
@@ -394,7 +452,10 @@ def fit_eq23(x, t, h, *, start_s: float | None = None, first_lag: int = 1, n_blo
     fit_info = {}
     if n_used >= 2:
         k2 = k[used] ** 2
-        for (c0, c1), yk, ek in ((("mu_per_s", "d0_m2_s"), g, ge), (("dz", "dx_l2"), st["s_gamma"], st["s_gamma_err"])):
+        for (c0, c1), yk, ek in (
+            (("mu_per_s", "d0_m2_s"), g, ge),
+            (("dz", "dx_l2"), st["s_gamma"], st["s_gamma_err"]),
+        ):
             e_used = _smooth_errors(k[used], ek[used])
             a, b, cov, chi2, dof = _wls(k2, yk[used], e_used)
             birge = max(1.0, math.sqrt(chi2 / dof)) if dof > 0 else 1.0
@@ -406,14 +467,19 @@ def fit_eq23(x, t, h, *, start_s: float | None = None, first_lag: int = 1, n_blo
     if n_used < min_modes:
         common.append(f"only {n_used} usable modes (need {min_modes})")
     if not stationary:
-        common.append(f"profile not stationary (mode power of the two halves differ, p = {p_stat:.2g} < {stationarity_alpha:g})")
+        common.append(
+            "profile not stationary (mode power of the two halves "
+            f"differ, p = {p_stat:.2g} < {stationarity_alpha:g})"
+        )
     slow_ok = bool(used[0]) if used.size else False
     span_ok = bool(n_used >= 2 and k[used].max() >= 2 * k[used].min())
     valid, reasons = {}, {}
     for c in COEFFICIENTS:
         why = list(common)
         if c in ("mu_per_s", "dz") and not slow_ok:
-            why.append(f"slowest mode k = 2 pi/L not usable ({reason[0] if reason.size else 'no modes'})")
+            why.append(
+                f"slowest mode k = 2 pi/L not usable ({reason[0] if reason.size else 'no modes'})"
+            )
         if c in ("d0_m2_s", "dx_l2") and not span_ok:
             why.append("usable modes span less than a factor 2 in k")
         valid[c] = not why
@@ -435,24 +501,37 @@ def fit_eq23(x, t, h, *, start_s: float | None = None, first_lag: int = 1, n_blo
         modes={
             "index": [int(v) for v in m],
             "k_per_m": k.tolist(),
-            "gamma_per_s": _list(g), "gamma_err_per_s": _list(ge),
-            "psd_m3": _list(st["psd"]), "psd_err_m3": _list(st["psd_err"]),
-            "s_gamma_m3_s": _list(st["s_gamma"]), "s_gamma_err_m3_s": _list(st["s_gamma_err"]),
+            "gamma_per_s": _list(g),
+            "gamma_err_per_s": _list(ge),
+            "psd_m3": _list(st["psd"]),
+            "psd_err_m3": _list(st["psd_err"]),
+            "s_gamma_m3_s": _list(st["s_gamma"]),
+            "s_gamma_err_m3_s": _list(st["s_gamma_err"]),
             "relaxations": _list(g * T),
             "used": [bool(v) for v in used],
             "reason": [str(r) for r in reason],
         },
-        settings={"first_lag": int(first_lag), "n_blocks": int(n_blocks), "min_relaxations": float(min_relaxations),
-                  "max_gamma_dt": float(max_gamma_dt), "min_modes": int(min_modes),
-                  "stationarity_alpha": float(stationarity_alpha), "start_s": start_s},
+        settings={
+            "first_lag": int(first_lag),
+            "n_blocks": int(n_blocks),
+            "min_relaxations": float(min_relaxations),
+            "max_gamma_dt": float(max_gamma_dt),
+            "min_modes": int(min_modes),
+            "stationarity_alpha": float(stationarity_alpha),
+            "start_s": start_s,
+        },
         dt_s=dt,
         duration_s=T,
         length_m=L,
         n_frames=int(nt),
         n_points=int(nx),
-        method=("per-mode OU: gamma from the log-slope of the autocovariance between lags j1 and j2 (~1/gamma), "
-                "S extrapolated to lag 0; delete-one-block jackknife errors; WLS against k^2 with Birge-ratio "
-                "scaled errors"),
+        method=(
+            "per-mode OU: gamma from the log-slope of the "
+            "autocovariance between lags j1 and j2 (~1/gamma), "
+            "S extrapolated to lag 0; delete-one-block "
+            "jackknife errors; WLS against k^2 with Birge-ratio "
+            "scaled errors"
+        ),
         units=dict(EQ23_UNITS),
     )
     return out

@@ -102,8 +102,15 @@ class FrictionCoefficient:
     same tests decide ``steady``.
     """
 
-    def __init__(self, friction, *, start_s: float | None = None, min_normal_fraction: float = 0.05, batch: int = 5,
-                 min_independent: float = 20.0):
+    def __init__(
+        self,
+        friction,
+        *,
+        start_s: float | None = None,
+        min_normal_fraction: float = 0.05,
+        batch: int = 5,
+        min_independent: float = 20.0,
+    ):
         if isinstance(friction, (str, Path)):
             friction = read_friction_csv(friction)
         self._data = {k: np.asarray(v, dtype=float) for k, v in friction.items()}
@@ -124,7 +131,10 @@ class FrictionCoefficient:
         fn = self._data["normal_N"]
         ok = fn > self._frac * np.median(np.abs(fn))
         if ok.sum() < 8:
-            raise DataFileError(f"friction: normal_N: expected >= 8 samples with contact (normal force > 0), got {int(ok.sum())}")
+            raise DataFileError(
+                "friction: normal_N: expected >= 8 samples with "
+                f"contact (normal force > 0), got {int(ok.sum())}"
+            )
         t, ft, fn = t[ok], ft[ok], fn[ok]
         mu_t = ft / fn
         if self._start is not None:
@@ -135,7 +145,9 @@ class FrictionCoefficient:
             d, mser_ok = mser_truncation(mu_t, batch=self._batch)
             mser_start = float(t[d])
         if t.size - d < 8:
-            raise DataFileError(f"friction: start_s: expected >= 8 samples after it, got {t.size - d}")
+            raise DataFileError(
+                f"friction: start_s: expected >= 8 samples after it, got {t.size - d}"
+            )
         msgs = []
         # the tests run on the candidate window (MSER or forced start); drift_sigma stays theirs
         is_steady, drift, converged, n_ind = self._assess(ft[d:], fn[d:], mser_ok, msgs)
@@ -188,7 +200,9 @@ class FrictionCoefficient:
             r["window_sliding_distance_m"] = float(x[-1] - x[w])
             r.units["sliding_distance_m"] = r.units["window_sliding_distance_m"] = "m"
         if estimator == "second_half_mean":
-            msgs.append(f"mu = {mean:.4g} +- {err:.2g} is the mean over the second half, NOT a steady value")
+            msgs.append(
+                f"mu = {mean:.4g} +- {err:.2g} is the mean over the second half, NOT a steady value"
+            )
         r.status = 1 if msgs else 0
         r.message = "; ".join(msgs) or f"mu = {mean:.4g} +- {err:.2g} after {t[d]:.3g} s"
         return self
@@ -206,9 +220,14 @@ class FrictionCoefficient:
         if not mser_ok:
             msgs.append("no steady state detected (MSER minimum at the end of its search range)")
         if not converged:
-            msgs.append("blocking did not reach a plateau (the window is shorter than a few correlation times)")
+            msgs.append(
+                "blocking did not reach a plateau (the window "
+                "is shorter than a few correlation times)"
+            )
         elif n_ind < self._min_ind:
-            msgs.append(f"window holds only {n_ind:.0f} independent samples (need {self._min_ind:.0f})")
+            msgs.append(
+                f"window holds only {n_ind:.0f} independent samples (need {self._min_ind:.0f})"
+            )
         if drift >= 3.0:
             msgs.append(f"halves of the window differ by {drift:.1f} standard errors")
         steady = bool(mser_ok and converged and n_ind >= self._min_ind and drift < 3.0)

@@ -88,7 +88,9 @@ def read_atoms(dump, index=-1, *, meta=None):
     else:
         i = int(index)
         if not -n_frames <= i < n_frames:
-            raise DataFileError(f"{path}: index: expected a frame in [{-n_frames}, {n_frames - 1}], got {index}")
+            raise DataFileError(
+                f"{path}: index: expected a frame in [{-n_frames}, {n_frames - 1}], got {index}"
+            )
         frames = [i % n_frames]
     mass_kg = m.raw.get("automaton_mass_kg") if known else None
     nm_to_A = 10.0
@@ -104,8 +106,8 @@ def read_atoms(dump, index=-1, *, meta=None):
         if mass_kg:
             atoms.set_masses(np.full(n, float(mass_kg) / AMU_KG))
         if ts.has_velocities:
-            # (after the masses: ASE stores momenta) dump velocities are nm/ns = m/s; the ASE velocity unit
-            # is Angstrom / (ASE time unit), and 1 s = units.second ASE time units
+            # (after the masses: ASE stores momenta) dump velocities are nm/ns = m/s; the ASE
+            # velocity unit is Angstrom / (ASE time unit), and 1 s = units.second ASE time units
             atoms.set_velocities(ts.velocities.astype(float) * 1e10 / units.second)
         mol = ts.data["mol"].astype(int)
         atoms.set_tags(mol)

@@ -64,8 +64,8 @@ MOL_BASE, MOL_LOWER, MOL_UPPER, MOL_SLIDER = 1, 2, 3, 4
 
 #: Columns the analyses read besides positions and velocities.
 _EXTRA_COLUMNS = ["mol", "radius", "c_nbond"]
-#: Optional per-automaton columns of the mca law (contract C2, ``fix mca_state``): its links, and its links
-#: to automata of another body.  Read when the dump has them (any of the spellings).
+#: Optional per-automaton columns of the mca law (contract C2, ``fix mca_state``): its links, and
+#: its links to automata of another body.  Read when the dump has them (any of the spellings).
 LINK_COLUMNS = {"n_links": ("f_mca_state[8]", "n_links"),
                 "n_cross_body_links": ("f_mca_state[9]", "n_cross_body_links", "c_ncross")}
 _EXTRA_COLUMNS += [name for names in LINK_COLUMNS.values() for name in names]
@@ -75,7 +75,12 @@ _EXTRA_COLUMNS += [name for names in LINK_COLUMNS.values() for name in names]
 # and fails with a message naming the canonical key.
 _META_KEYS: dict[str, tuple[str, ...]] = {
     "dt_s": ("dt_s", "timestep_s", "dt"),
-    "dump_interval_steps": ("dump_interval_steps", "dump_every_steps", "dump_every", "dump_interval"),
+    "dump_interval_steps": (
+        "dump_interval_steps",
+        "dump_every_steps",
+        "dump_every",
+        "dump_interval",
+    ),
     "dump_interval_s": ("dump_interval_s", "dump_every_s"),
     "velocity_m_s": ("velocity_m_s", "sliding_velocity_m_s", "velocity"),
     "pressure_Pa": ("pressure_Pa", "pressure_pa", "pressure"),
@@ -174,21 +179,26 @@ class MCAMeta:
             except (TypeError, ValueError):
                 raise DataFileError(f"{source}: {key}: expected a number, got {value!r}") from None
             if not math.isfinite(v) or (positive and v <= 0):
-                raise DataFileError(f"{source}: {key}: expected a finite positive number, got {value!r}")
+                raise DataFileError(
+                    f"{source}: {key}: expected a finite positive number, got {value!r}"
+                )
             return v
 
         dt = num("dt_s", need("dt_s"))
         every = _lookup(raw, "dump_interval_steps")
         every_s = _lookup(raw, "dump_interval_s")
         if every is None and every_s is None:
-            raise DataFileError(f"{source}: dump_interval_s: expected a value, got nothing (missing key)")
+            raise DataFileError(
+                f"{source}: dump_interval_s: expected a value, got nothing (missing key)"
+            )
         if every is None:
             every = round(num("dump_interval_s", every_s) / dt)
         every = int(num("dump_interval_steps", every))
         every_s = num("dump_interval_s", every_s) if every_s is not None else every * dt
         if not math.isclose(every_s, every * dt, rel_tol=1e-6):
             raise DataFileError(
-                f"{source}: dump_interval_s: expected dump_interval_steps*dt_s = {every * dt:g} s, got {every_s!r}"
+                f"{source}: dump_interval_s: expected "
+                f"dump_interval_steps*dt_s = {every * dt:g} s, got {every_s!r}"
             )
         dim = int(_lookup(raw, "dimension") or 2)
         if dim not in (2, 3):
@@ -199,7 +209,10 @@ class MCAMeta:
         if isinstance(axis, str):
             axis = "xyz".index(axis.lower()) if axis.lower() in ("x", "y", "z") else -1
         if axis not in (0, 1, 2) or (dim == 2 and axis == 2):
-            raise DataFileError(f"{source}: normal_axis: expected 'y' (or 'z' in 3D), got {_lookup(raw, 'normal_axis')!r}")
+            raise DataFileError(
+                f"{source}: normal_axis: expected 'y' (or 'z' "
+                f"in 3D), got {_lookup(raw, 'normal_axis')!r}"
+            )
         box = _lookup(raw, "box_m")
         lengths: tuple[float, ...] = ()
         if box is not None:
@@ -253,7 +266,9 @@ def read_meta(out_dir: str | Path) -> MCAMeta:
     except FileNotFoundError:
         raise DataFileError(f"{path}: expected an MCA meta.json, got no such file") from None
     except json.JSONDecodeError as exc:
-        raise DataFileError(f"{path}: expected valid JSON, got {exc.msg} at line {exc.lineno}") from None
+        raise DataFileError(
+            f"{path}: expected valid JSON, got {exc.msg} at line {exc.lineno}"
+        ) from None
     if not isinstance(raw, Mapping):
         raise DataFileError(f"{path}: expected a JSON object, got {type(raw).__name__}")
     return MCAMeta.from_dict(raw, source=str(path))
@@ -281,7 +296,9 @@ def read_friction_csv(path: str | Path) -> dict[str, np.ndarray]:
         header = [h.strip() for h in fh.readline().split(",")]
     missing = [c for c in FRICTION_COLUMNS if c not in header]
     if missing:
-        raise DataFileError(f"{path}: header: expected columns {list(FRICTION_COLUMNS)}, got {header}")
+        raise DataFileError(
+            f"{path}: header: expected columns {list(FRICTION_COLUMNS)}, got {header}"
+        )
     data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
     if data.shape[0] < 2:
         raise DataFileError(f"{path}: expected at least 2 rows, got {data.shape[0]}")
@@ -297,7 +314,10 @@ def read_friction_csv(path: str | Path) -> dict[str, np.ndarray]:
 
 
 def _last_segment_mask(values: np.ndarray) -> np.ndarray:
-    """Return True where ``values[i]`` is smaller than every later value (drops rows superseded by a resume)."""
+    """Return True where ``values[i]`` is smaller than every later value.
+
+    This drops rows superseded by a resume.
+    """
     values = np.asarray(values, dtype=float)
     later_min = np.minimum.accumulate(values[::-1])[::-1]
     later_min = np.append(later_min[1:], np.inf)
@@ -358,7 +378,8 @@ def _reader_class():
         """
 
         format = "MCADUMP"
-        #: MD timestep (ps), set by :func:`open_trajectory`; the reader's ``dt`` is the time between frames.
+        #: MD timestep (ps), set by :func:`open_trajectory`; the reader's
+        #: ``dt`` is the time between frames.
         md_dt_ps = None
 
         def _read_next_timestep(self):
@@ -373,7 +394,8 @@ def _reader_class():
             n = int(f.readline())
             if n != self.n_atoms:
                 raise DataFileError(
-                    f"{self.filename}: frame {ts.frame}: expected {self.n_atoms} atoms (atoms lost?), got {n}"
+                    f"{self.filename}: frame {ts.frame}: expected "
+                    f"{self.n_atoms} atoms (atoms lost?), got {n}"
                 )
             f.readline()
             bounds = np.array([f.readline().split()[:2] for _ in range(3)], dtype=float)
@@ -388,7 +410,9 @@ def _reader_class():
             col = {name: i for i, name in enumerate(names)}
             for needed in ("id", "x", "y", "z"):
                 if needed not in col:
-                    raise DataFileError(f"{self.filename}: ATOMS: expected column {needed!r}, got {names}")
+                    raise DataFileError(
+                        f"{self.filename}: ATOMS: expected column {needed!r}, got {names}"
+                    )
             order = np.argsort(table[:, col["id"]], kind="stable")
             table = table[order]
             ts.data["step"] = step
@@ -414,7 +438,9 @@ def _reader_class():
 _READER = None
 
 
-def open_trajectory(out_dir: str | Path, meta: MCAMeta | None = None, dump: str | Path | None = None):
+def open_trajectory(
+    out_dir: str | Path, meta: MCAMeta | None = None, dump: str | Path | None = None
+):
     """Open the dump of an MCA run as an MDAnalysis Universe.
 
     Parameters
@@ -444,7 +470,9 @@ def open_trajectory(out_dir: str | Path, meta: MCAMeta | None = None, dump: str 
     with path.open() as fh:
         head = [fh.readline() for _ in range(9)]
     if not head[0].startswith("ITEM: TIMESTEP") or not head[8].startswith("ITEM: ATOMS"):
-        raise DataFileError(f"{path}: expected a LAMMPS dump custom file, got first line {head[0].strip()!r}")
+        raise DataFileError(
+            f"{path}: expected a LAMMPS dump custom file, got first line {head[0].strip()!r}"
+        )
     names = head[8].split()[2:]
     missing = [c for c in DUMP_COLUMNS if c not in names]
     if missing:

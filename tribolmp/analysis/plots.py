@@ -85,8 +85,13 @@ def plot_friction(source, path=None, *, ax=None, title: str | None = None):
     what = f"steady from {t0:.3g} ns" if steady else f"NO steady state; mean from {t0:.3g} ns"
     ax.axvline(t0, color="k", ls=":", lw=1, label=what)
     ax.axhspan(res.mu - res.mu_err, res.mu + res.mu_err, color="#d62728", alpha=0.3)
-    ax.axhline(res.mu, color="#d62728", lw=1.2, ls="-" if steady else "--",
-               label=rf"$\mu$ = {res.mu:.3f} $\pm$ {res.mu_err:.3f}" + ("" if steady else " (not steady)"))
+    ax.axhline(
+        res.mu,
+        color="#d62728",
+        lw=1.2,
+        ls="-" if steady else "--",
+        label=rf"$\mu$ = {res.mu:.3f} $\pm$ {res.mu_err:.3f}" + ("" if steady else " (not steady)"),
+    )
     ax.set_xlabel("time (ns)")
     ax.set_ylabel(r"friction coefficient $\mu$")
     ax.legend(loc="best", fontsize=8)
@@ -167,8 +172,16 @@ def plot_snapshot(out_dir, path=None, *, ax=None, frame: int = -1, title: str | 
     aspect = (ys.max() - ys.min() + 2 * margin) / box[0]
     fig, ax, own = _figure(plt, ax, path, (width, max(2.5, width * aspect + 0.8)))
     # EllipseCollection with units="xy" takes full widths in data units (nm): true automaton size
-    coll = EllipseCollection(2 * r, 2 * r, np.zeros_like(r), units="xy", offsets=np.column_stack([xs, ys]),
-                             offset_transform=ax.transData, facecolors=colours, edgecolors="none")
+    coll = EllipseCollection(
+        2 * r,
+        2 * r,
+        np.zeros_like(r),
+        units="xy",
+        offsets=np.column_stack([xs, ys]),
+        offset_transform=ax.transData,
+        facecolors=colours,
+        edgecolors="none",
+    )
     ax.add_collection(coll)
     ax.axhline(y0, color="k", ls="--", lw=0.8)
     ax.set_xlim(x0, x1)
@@ -178,7 +191,14 @@ def plot_snapshot(out_dir, path=None, *, ax=None, frame: int = -1, title: str | 
     ax.set_ylabel("y (nm)")
     handles = [Patch(color=c, label=lab) for c, lab in BODY_COLOURS.values()]
     handles.append(plt.Line2D([], [], color="k", ls="--", lw=0.8, label="original interface"))
-    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=5, fontsize=7, frameon=False)
+    ax.legend(
+        handles=handles,
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.18),
+        ncol=5,
+        fontsize=7,
+        frameon=False,
+    )
     ax.set_title(title or f"t = {ts.time * 1e-3:.3g} ns", fontsize=9)
     return _finish(plt, fig, ax, own, path, dpi=150)
 
@@ -204,7 +224,13 @@ def plot_profiles(velocity, composition, path=None, *, ax=None, title: str | Non
     fig, ax, own = _figure(plt, ax, path, (4.2, 4.8))
     y0 = velocity.interface_height_m
     z = (np.asarray(velocity.heights_m) - y0) / 1e-9
-    ax.plot(np.asarray(velocity.vx_m_s) / velocity.reference_velocity_m_s, z, "o-", ms=3, label=r"$v_x/V$")
+    ax.plot(
+        np.asarray(velocity.vx_m_s) / velocity.reference_velocity_m_s,
+        z,
+        "o-",
+        ms=3,
+        label=r"$v_x/V$",
+    )
     zc = (np.asarray(composition.heights_m) - composition.interface_height_m) / 1e-9
     ax.plot(composition.upper_fraction, zc, "s-", ms=3, label="upper-body fraction")
     for h in (velocity.layer_bottom_m, velocity.layer_top_m):
@@ -215,6 +241,10 @@ def plot_profiles(velocity, composition, path=None, *, ax=None, title: str | Non
     ax.set_xlabel("fraction")
     ax.set_ylabel("height above original interface (nm)")
     ax.legend(fontsize=8, loc="lower right")
-    ax.set_title(title or f"layer {velocity.layer_depth_m / 1e-9:.3g} nm, mixed {composition.mixed_width_m / 1e-9:.3g} nm",
-                 fontsize=9)
+    ax.set_title(
+        title
+        or f"layer {velocity.layer_depth_m / 1e-9:.3g} nm, "
+           f"mixed {composition.mixed_width_m / 1e-9:.3g} nm",
+        fontsize=9,
+    )
     return _finish(plt, fig, ax, own, path, dpi=130)

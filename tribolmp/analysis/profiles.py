@@ -98,7 +98,9 @@ class _HeightBinned:
         self._bin_nm = check_range("bin_width_m", w, 0.0, None, lo_open=True, unit="m") / NM
         self._ref = int(reference_frame)
         cw = 2 * meta.automaton_diameter_m if column_width_m is None else column_width_m
-        self._col_target_nm = check_range("column_width_m", cw, 0.0, None, lo_open=True, unit="m") / NM
+        self._col_target_nm = (
+            check_range("column_width_m", cw, 0.0, None, lo_open=True, unit="m") / NM
+        )
 
     def _prepare_bins(self) -> None:
         traj = self._trajectory
@@ -115,14 +117,21 @@ class _HeightBinned:
         self._ncol = max(1, int(round(self._L_nm / self._col_target_nm)))
         self._y0_nm = interface_height(h, mols)
         if not np.isfinite(self._y0_nm):
-            raise DataFileError("trajectory: mol: expected lower (1, 2) and upper (3, 4) bodies stacked along the normal")
+            raise DataFileError(
+                "trajectory: mol: expected lower (1, 2) and "
+                "upper (3, 4) bodies stacked along the normal"
+            )
 
     def _bin_index(self, h) -> np.ndarray:
         return np.clip(np.floor((h - self._edges[0]) / self._bin_nm).astype(int), 0, self._nb - 1)
 
     def _col_bin_index(self, x, h) -> np.ndarray:
         """Flat index column * n_bins + height bin (columns of equal width along the periodic x)."""
-        col = np.clip(np.floor(np.mod(x, self._L_nm) / (self._L_nm / self._ncol)).astype(int), 0, self._ncol - 1)
+        col = np.clip(
+            np.floor(np.mod(x, self._L_nm) / (self._L_nm / self._ncol)).astype(int),
+            0,
+            self._ncol - 1,
+        )
         return col * self._nb + self._bin_index(h)
 
     @property
@@ -185,7 +194,9 @@ class VelocityProfile(_HeightBinned, FromOutput, AnalysisBase):
         super().__init__(universe.trajectory, **kwargs)
         self._setup_bins(meta, bin_width_m, reference_frame, column_width_m)
         if velocity_reference not in ("slider", "meta"):
-            raise ParameterError("velocity_reference", "one of ['slider', 'meta']", velocity_reference)
+            raise ParameterError(
+                "velocity_reference", "one of ['slider', 'meta']", velocity_reference
+            )
         self._vref = velocity_reference
         self._n_windows = int(n_windows)
 
@@ -261,8 +272,8 @@ class VelocityProfile(_HeightBinned, FromOutput, AnalysisBase):
         r.window_time_s = np.asarray(wt)
         r.window_layer_depth_m = np.asarray(wd)
         r.window_layer_offset_m = np.asarray(wo)
-        # per x column: a wavy slip line is sharp in every column, while the x-averaged profile above
-        # turns its waviness into an apparent layer
+        # per x column: a wavy slip line is sharp in every column, while the
+        # x-averaged profile above turns its waviness into an apparent layer
         cs = self._csum.reshape(self._ncol, self._nb)
         cc = self._ccnt.reshape(self._ncol, self._nb)
         cols = []
@@ -276,7 +287,9 @@ class VelocityProfile(_HeightBinned, FromOutput, AnalysisBase):
         ok = np.isfinite(cols[:, 0])
         r.columns_resolved = int(ok.sum())
         r.layer_depth_columns_m = float(cols[ok, 0].mean()) if ok.any() else float("nan")
-        r.layer_depth_columns_err_m = float(cols[ok, 0].std(ddof=1) / np.sqrt(ok.sum())) if ok.sum() > 1 else float("nan")
+        r.layer_depth_columns_err_m = (
+            float(cols[ok, 0].std(ddof=1) / np.sqrt(ok.sum())) if ok.sum() > 1 else float("nan")
+        )
         r.units = {"heights_m": "m", "vx_m_s": "m/s", "layer_depth_m": "m", "layer_offset_m": "m",
                    "interface_height_m": "m", "reference_velocity_m_s": "m/s", "time_s": "s",
                    "column_width_m": "m", "column_layer_depth_m": "m", "layer_depth_columns_m": "m",
@@ -407,8 +420,8 @@ class CompositionProfile(_HeightBinned, FromOutput, AnalysisBase):
             ww.append(b - a)
         r.window_time_s = np.asarray(wt)
         r.window_mixed_width_m = np.asarray(ww)
-        # the initial roughness: frame 0's width (x-averaged: the roughness itself; per column: only the
-        # discretisation floor of a sharp step), subtracted from the mixed widths
+        # the initial roughness: frame 0's width (x-averaged: the roughness itself; per column:
+        # only the discretisation floor of a sharp step), subtracted from the mixed widths
         r.mixed_width_frame0_m = self._width(self._up0, self._all0)
         r.mixed_width_excess_m = r.mixed_width_m - r.mixed_width_frame0_m
         cu = self._cup.reshape(self._ncol, self._nb)
@@ -424,8 +437,20 @@ class CompositionProfile(_HeightBinned, FromOutput, AnalysisBase):
         ok = np.isfinite(ex)
         r.columns_resolved = int(ok.sum())
         r.mixed_width_columns_m = float(ex[ok].mean()) if ok.any() else float("nan")
-        r.mixed_width_columns_err_m = float(ex[ok].std(ddof=1) / np.sqrt(ok.sum())) if ok.sum() > 1 else float("nan")
-        r.units = {"heights_m": "m", "upper_fraction": "1", "mixed_width_m": "m", "penetration_upper_m": "m",
-                   "penetration_lower_m": "m", "interface_height_m": "m", "time_s": "s",
-                   "mixed_width_frame0_m": "m", "mixed_width_excess_m": "m", "column_width_m": "m",
-                   "mixed_width_columns_m": "m", "mixed_width_columns_err_m": "m"}
+        r.mixed_width_columns_err_m = (
+            float(ex[ok].std(ddof=1) / np.sqrt(ok.sum())) if ok.sum() > 1 else float("nan")
+        )
+        r.units = {
+            "heights_m": "m",
+            "upper_fraction": "1",
+            "mixed_width_m": "m",
+            "penetration_upper_m": "m",
+            "penetration_lower_m": "m",
+            "interface_height_m": "m",
+            "time_s": "s",
+            "mixed_width_frame0_m": "m",
+            "mixed_width_excess_m": "m",
+            "column_width_m": "m",
+            "mixed_width_columns_m": "m",
+            "mixed_width_columns_err_m": "m",
+        }

@@ -104,49 +104,94 @@ RATES_UNITS = {
 }
 
 #: Names that must never appear in rates.json: they were identities of other rates.
-REMOVED_IDENTITIES = ("wear_rate", "step_time_s", "detachment_rate", "reattachment_rate", "net_transfer_rate")
+REMOVED_IDENTITIES = (
+    "wear_rate",
+    "step_time_s",
+    "detachment_rate",
+    "reattachment_rate",
+    "net_transfer_rate",
+)
 
 #: C2 global tallies looked for in friction.csv (cumulative counts), by exact column name or suffix.
-C2_TALLIES = ("cross_body_links_formed", "cross_body_links_broken", "cross_body_links_current", "links_total",
-              "links_broken", "welds_formed")
+C2_TALLIES = (
+    "cross_body_links_formed",
+    "cross_body_links_broken",
+    "cross_body_links_current",
+    "links_total",
+    "links_broken",
+    "welds_formed",
+)
 
 #: What every field means (copied into rates.json).
 DEFINITIONS = {
-    "mu": ("sum F_t / sum F_n over the window starting at mu_window_start_s: the MSER-5 steady start when mu_steady "
-           "(mu_estimator 'steady_mean'), else the second half of the run ('second_half_mean', NOT steady); mu_err: "
-           "blocking standard error, widened to half the difference of the window's halves when not steady"),
-    "mu_per_s, d0_m2_s, dz, dx_l2": ("Eq. 23 coefficients of the lower body's column-mass profile h(x, t) "
-                                     "(profile.npz) after analysis_start_s: per Fourier mode gamma(k) from the "
-                                     "autocovariance (lags 1 and ~1/gamma) and S(k) extrapolated to lag 0; WLS fits "
-                                     "gamma = mu + D0 k^2 and S gamma = Dz + Dx l^2 k^2; jackknife errors; null "
-                                     "unless valid (reasons in eq23.reasons)"),
-    "diffusion_m2_s": ("MSD = 2 n D t of surface automata relative to their body, n lateral dims, only when the MSD's "
-                       "log-slope over the fit window is within 0.8-1.2 and its rms exceeds one automaton diameter; "
-                       "else null (diffusion_exponent, diffusion_reason)"),
-    "transfer_events": ("membership changes of body automata into the other body; membership = the velocity state "
-                        "(lower < V/3 < layer < 2V/3 < upper, velocity averaged over transfer_window_frames; the "
-                        "other body's state when the dump's mca-law columns show most of the automaton's links "
-                        "going to the other body) of the latest run lasting >= transfer_persistence_s"),
-    "transfer_per_s, transfer_per_m": "transfer_events per analysed second / per metre slid; errors sqrt(n) (>= 1 event)",
+    "mu": (
+        "sum F_t / sum F_n over the window starting at "
+        "mu_window_start_s: the MSER-5 steady start when mu_steady "
+        "(mu_estimator 'steady_mean'), else the second half "
+        "of the run ('second_half_mean', NOT steady); mu_err: "
+        "blocking standard error, widened to half the "
+        "difference of the window's halves when not steady"
+    ),
+    "mu_per_s, d0_m2_s, dz, dx_l2": (
+        "Eq. 23 coefficients of the lower body's column-mass profile h(x, t) "
+        "(profile.npz) after analysis_start_s: per Fourier mode gamma(k) from the "
+        "autocovariance (lags 1 and ~1/gamma) and S(k) extrapolated to lag 0; WLS fits "
+        "gamma = mu + D0 k^2 and S gamma = Dz + Dx l^2 k^2; jackknife errors; null "
+        "unless valid (reasons in eq23.reasons)"
+    ),
+    "diffusion_m2_s": (
+        "MSD = 2 n D t of surface automata relative to "
+        "their body, n lateral dims, only when the MSD's "
+        "log-slope over the fit window is within 0.8-1.2 "
+        "and its rms exceeds one automaton diameter; "
+        "else null (diffusion_exponent, diffusion_reason)"
+    ),
+    "transfer_events": (
+        "membership changes of body automata into the other body; membership = the velocity state "
+        "(lower < V/3 < layer < 2V/3 < upper, velocity averaged over transfer_window_frames; the "
+        "other body's state when the dump's mca-law columns show most of the automaton's links "
+        "going to the other body) of the latest run lasting >= transfer_persistence_s"
+    ),
+    "transfer_per_s, transfer_per_m": (
+        "transfer_events per analysed second / per metre slid; errors sqrt(n) (>= 1 event)"
+    ),
     "transfer_rate": "transfer_events per surface automaton per metre slid",
-    "cross_body_links_formed": ("links formed between automata of different bodies (different molecule ids) over the "
-                                "whole run, from the law's cumulative tally (C2) in friction.csv; null when the law "
-                                "does not count them"),
-    "cross_body_links_formed_per_s, _per_m": "the same tally's increase over the analysed window per second / metre",
-    "wear_lower_per_s, wear_lower_per_m": ("net loss of members of the lower body (automata) over the analysed "
-                                           "window per second / per metre slid; error sqrt(out + in events)"),
+    "cross_body_links_formed": (
+        "links formed between automata of different bodies (different molecule ids) over the "
+        "whole run, from the law's cumulative tally (C2) in friction.csv; null when the law "
+        "does not count them"
+    ),
+    "cross_body_links_formed_per_s, _per_m": (
+        "the same tally's increase over the analysed window per second / metre"
+    ),
+    "wear_lower_per_s, wear_lower_per_m": (
+        "net loss of members of the lower body (automata) over the analysed "
+        "window per second / per metre slid; error sqrt(out + in events)"
+    ),
     "wear_upper_per_s, wear_upper_per_m": "the same for the upper body",
-    "layer_depth_m": ("10-90 % width of the isotonic fit of v_x(h)/V per x column (column_width_m), averaged over "
-                      "columns; layer_depth_err_m: standard error of that mean; layer_depth_xavg_m: x-averaged"),
-    "mixed_width_m": ("10-90 % width of the upper-body fraction per x column minus the same column's width in "
-                      "frame 0 (the initial roughness), averaged; mixed_width_frame0_m: x-averaged frame-0 width"),
-    "step_length_m": "a length, not a rate: layer_depth_m if resolved (>= 2 bins and >= d), else the automaton diameter",
-    "links_broken_per_s, links_formed_per_s": ("turnover of all links from c_nbond changes between dump frames "
-                                               "(lower bounds), errors sqrt(n); link_break_rate per mean link"),
+    "layer_depth_m": (
+        "10-90 % width of the isotonic fit of v_x(h)/V "
+        "per x column (column_width_m), averaged over "
+        "columns; layer_depth_err_m: standard error of that mean; layer_depth_xavg_m: x-averaged"
+    ),
+    "mixed_width_m": (
+        "10-90 % width of the upper-body fraction per x column minus the same column's width in "
+        "frame 0 (the initial roughness), averaged; mixed_width_frame0_m: x-averaged frame-0 width"
+    ),
+    "step_length_m": (
+        "a length, not a rate: layer_depth_m if resolved (>= 2 bins and >= d), "
+        "else the automaton diameter"
+    ),
+    "links_broken_per_s, links_formed_per_s": (
+        "turnover of all links from c_nbond changes between dump frames "
+        "(lower bounds), errors sqrt(n); link_break_rate per mean link"
+    ),
 }
 
 
-def steady_frames(times_s: np.ndarray, start_s: float, min_frames: int = 8) -> tuple[np.ndarray, str]:
+def steady_frames(
+    times_s: np.ndarray, start_s: float, min_frames: int = 8
+) -> tuple[np.ndarray, str]:
     """Frames to analyse: those at or after ``start_s``, at least the last ``min_frames``.
 
     Returns
@@ -161,7 +206,8 @@ def steady_frames(times_s: np.ndarray, start_s: float, min_frames: int = 8) -> t
         return idx, ""
     k = min(n, max(min_frames, n // 2))
     return np.arange(n - k, n), (
-        f"only {idx.size} dump frames after the friction steady start {start_s:.3g} s; analysed the last {k}"
+        f"only {idx.size} dump frames after the friction "
+        f"steady start {start_s:.3g} s; analysed the last {k}"
     )
 
 
@@ -178,24 +224,39 @@ def _c2_tallies(fr: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
 
 def _turnover(bt, counting_rate) -> dict[str, Any]:
     """Link turnover of all links (lower bounds from c_nbond) with counting errors."""
-    keys = ("links_broken_per_s", "links_broken_per_s_err", "links_formed_per_s", "links_formed_per_s_err",
-            "link_break_rate", "link_break_rate_err")
+    keys = (
+        "links_broken_per_s",
+        "links_broken_per_s_err",
+        "links_formed_per_s",
+        "links_formed_per_s_err",
+        "link_break_rate",
+        "link_break_rate_err",
+    )
     if bt is None:
         return dict.fromkeys(keys)
     span = float(bt.time_s[-1] - bt.time_s[0]) if len(bt.time_s) > 1 else float("nan")
     out = {}
     for name, total in (("broken", bt.broken_total), ("formed", bt.formed_total)):
         v, e = counting_rate(total, span)
-        out[f"links_{name}_per_s"], out[f"links_{name}_per_s_err"] = finite_or_none(v), finite_or_none(e)
+        out[f"links_{name}_per_s"], out[f"links_{name}_per_s_err"] = (
+            finite_or_none(v),
+            finite_or_none(e),
+        )
     links = float(np.mean(bt.bonds)) if len(bt.bonds) else 0.0
-    v, e = counting_rate(bt.broken_total, span * links) if links > 0 else (float("nan"), float("nan"))
+    v, e = (
+        counting_rate(bt.broken_total, span * links) if links > 0 else (float("nan"), float("nan"))
+    )
     out["link_break_rate"], out["link_break_rate_err"] = finite_or_none(v), finite_or_none(e)
     return out
 
 
 def _law(meta) -> str | None:
     raw = meta.raw
-    law = raw.get("law") or (raw.get("params") or {}).get("law") or (raw.get("params") or {}).get("bond_style")
+    law = (
+        raw.get("law")
+        or (raw.get("params") or {}).get("law")
+        or (raw.get("params") or {}).get("bond_style")
+    )
     return None if law is None else str(law)
 
 
@@ -275,11 +336,18 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
             return None
 
     kw_cols = {"column_width_m": column_width_m}
-    vp = attempt("velocity profile", lambda: VelocityProfile(u, meta, bin_width_m=bin_width_m, **kw_cols))
-    cp = attempt("composition profile", lambda: CompositionProfile(u, meta, bin_width_m=bin_width_m, **kw_cols))
+    vp = attempt(
+        "velocity profile", lambda: VelocityProfile(u, meta, bin_width_m=bin_width_m, **kw_cols)
+    )
+    cp = attempt(
+        "composition profile",
+        lambda: CompositionProfile(u, meta, bin_width_m=bin_width_m, **kw_cols),
+    )
     bt = attempt("bond turnover", lambda: BondTurnover(u, meta))
     ld = attempt("diffusion", lambda: LateralDiffusion(u, meta))
-    mt = attempt("transfer", lambda: MassTransfer(u, meta, window=window, persistence_s=persistence_s))
+    mt = attempt(
+        "transfer", lambda: MassTransfer(u, meta, window=window, persistence_s=persistence_s)
+    )
     sp = attempt("surface profile", lambda: SurfaceProfile(u, meta), use=frames_all)
 
     def get(res, key):
@@ -296,12 +364,17 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
         l_step, l_src = layer, "layer_depth_m"
     else:
         l_step, l_src = d, "automaton_diameter_m"
-        warnings_.append("step_length_m: no sheared layer of two bins or more resolved per column (slip on a "
-                         "single plane); using the automaton diameter")
+        warnings_.append(
+            "step_length_m: no sheared layer of two bins or more resolved per column (slip on a "
+            "single plane); using the automaton diameter"
+        )
     mw = get(cp, "mixed_width_columns_m")
     if mw is not None and mw < 0:
-        warnings_.append(f"mixed_width_m: {mw:.3g} m < 0: the interface is sharper than the initial roughness in "
-                         "frame 0 (roughness flattened, no mixing beyond it resolved)")
+        warnings_.append(
+            f"mixed_width_m: {mw:.3g} m < 0: the interface "
+            "is sharper than the initial roughness in "
+            "frame 0 (roughness flattened, no mixing beyond it resolved)"
+        )
     # ---- diffusion only in the diffusive regime
     D = D_err = None
     d_reason = "not measured"
@@ -332,7 +405,11 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
             n_w = float(c[in_win][-1] - c[in_win][0]) if in_win.sum() > 1 else float("nan")
             cb[f"{name}_window"] = finite_or_none(n_w)
             for unit, exposure in (("s", span_w), ("m", dist_w)):
-                v, e = counting_rate(n_w, exposure) if np.isfinite(n_w) else (float("nan"), float("nan"))
+                v, e = (
+                    counting_rate(n_w, exposure)
+                    if np.isfinite(n_w)
+                    else (float("nan"), float("nan"))
+                )
                 cb[f"{name}_per_{unit}"] = finite_or_none(v)
                 cb[f"{name}_per_{unit}_err"] = finite_or_none(e)
         for name in ("cross_body_links_current", "links_total", "links_broken", "welds_formed"):
@@ -343,12 +420,19 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
         cb["cross_body_links_formed"] = None
         cb["cross_body_links_broken"] = None
         if law == "mca":
-            reason = ("the mca law counts them (C2 tallies of `compute pair mca`), but this run's friction.csv has "
-                      "no cross_body_links_formed column: the deck did not print the tallies")
+            reason = (
+                "the mca law counts them (C2 tallies of `compute "
+                "pair mca`), but this run's friction.csv has "
+                "no cross_body_links_formed column: the deck did not print the tallies"
+            )
         else:
-            reason = (f"law {law!r} does not count links between the bodies: its dump (c_nbond) and log give links "
-                      "per automaton without their partners, so links between the bodies cannot be told from links "
-                      "within a body (the mca law's C2 tallies do)")
+            reason = (
+                f"law {law!r} does not count links between the "
+                "bodies: its dump (c_nbond) and log give links "
+                "per automaton without their partners, so links "
+                "between the bodies cannot be told from links "
+                "within a body (the mca law's C2 tallies do)"
+            )
         cb["cross_body_links_reason"] = reason
         warnings_.append(f"cross_body_links_formed: null: {reason}")
     # ---- the surface profile and its Eq. 23 fit
@@ -361,8 +445,11 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
         t0_fit = float(times[sel][0]) if sel.size else float(sp.t_s[0])
         n_fit = int((sp.t_s >= t0_fit).sum())
         try:
-            # 20 jackknife blocks (the calibrated default) when the run has >= 80 frames, else fewer (>= 4)
-            eq = fit_eq23(sp.x_m, sp.t_s, sp.h_m, start_s=t0_fit, n_blocks=min(20, max(4, n_fit // 4)))
+            # 20 jackknife blocks (the calibrated default) when the run has
+            # >= 80 frames, else fewer (>= 4)
+            eq = fit_eq23(
+                sp.x_m, sp.t_s, sp.h_m, start_s=t0_fit, n_blocks=min(20, max(4, n_fit // 4))
+            )
         except DataFileError as exc:
             warnings_.append(f"eq23: {exc}")
             eq = None
@@ -371,8 +458,11 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
         v = None if eq is None else eq[c]
         e = None if eq is None else eq[f"{c}_err"]
         if v is not None and v < 0:
-            # a valid fit whose estimate is negative: consistent with 0 within its error, but not a rate
-            eq["reasons"][c] = f"estimate {v:.3g} < 0 ({abs(v) / e:.1f} sigma below 0): not a physical value"
+            # a valid fit whose estimate is negative: consistent with 0
+            # within its error, but not a rate
+            eq["reasons"][c] = (
+                f"estimate {v:.3g} < 0 ({abs(v) / e:.1f} sigma below 0): not a physical value"
+            )
             v = e = None
         eq_top[c], eq_top[f"{c}_err"] = v, e
     valid = {c: eq_top[c] is not None for c in COEFFICIENTS}
@@ -382,8 +472,12 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
             warnings_.append(f"{c}: null: {why}")
 
     time_s = meta.time_s if meta.time_s is not None else float(fr["time_s"][-1])
-    conditions = {"pressure_Pa": meta.pressure_Pa, "sliding_velocity_m_s": meta.velocity_m_s, "law": law,
-                  "dim": meta.dimension}
+    conditions = {
+        "pressure_Pa": meta.pressure_Pa,
+        "sliding_velocity_m_s": meta.velocity_m_s,
+        "law": law,
+        "dim": meta.dimension,
+    }
     rates: dict[str, Any] = {
         "mu": get(fc, "mu"),
         "mu_err": get(fc, "mu_err"),
@@ -424,10 +518,23 @@ def compute_rates(out_dir, *, start_s: float | None = None, bin_width_m: float |
         "transfer_membership_source": None if mt is None else str(mt.membership_source),
         "net_transfer_lower_to_upper": None if mt is None else int(mt.net_transfer_lower_to_upper),
         **cb,
-        **{k: get(mt, k) for k in ("wear_lower_per_s", "wear_lower_per_s_err", "wear_lower_per_m",
-                                    "wear_lower_per_m_err", "wear_upper_per_s", "wear_upper_per_s_err",
-                                    "wear_upper_per_m", "wear_upper_per_m_err", "wear_lower_kg_per_m",
-                                    "wear_lower_kg_per_m_err", "wear_upper_kg_per_m", "wear_upper_kg_per_m_err")},
+        **{
+            k: get(mt, k)
+            for k in (
+                "wear_lower_per_s",
+                "wear_lower_per_s_err",
+                "wear_lower_per_m",
+                "wear_lower_per_m_err",
+                "wear_upper_per_s",
+                "wear_upper_per_s_err",
+                "wear_upper_per_m",
+                "wear_upper_per_m_err",
+                "wear_lower_kg_per_m",
+                "wear_lower_kg_per_m_err",
+                "wear_upper_kg_per_m",
+                "wear_upper_kg_per_m_err",
+            )
+        },
         **_turnover(bt, counting_rate),
         "step_length_m": l_step,
         "step_length_source": l_src,

@@ -79,7 +79,7 @@ def mser_truncation(y, batch: int = 5, max_fraction: float = 0.5) -> tuple[int, 
 
 
 def block_standard_error(y, min_blocks: int = 8) -> tuple[float, bool]:
-    """Standard error of the mean of a correlated series by blocking.
+    """Estimate the standard error of the mean of a correlated series by blocking.
 
     Consecutive pairs are averaged repeatedly; the naive standard error of the
     block means rises with block size until blocks are longer than the
@@ -149,7 +149,11 @@ def isotonic_fit(y, w=None, increasing: bool = True) -> np.ndarray:
         lens.append(1)
         while len(vals) > 1 and vals[-2] > vals[-1]:
             wsum = wts[-2] + wts[-1]
-            v = (vals[-2] * wts[-2] + vals[-1] * wts[-1]) / wsum if wsum > 0 else 0.5 * (vals[-2] + vals[-1])
+            v = (
+                (vals[-2] * wts[-2] + vals[-1] * wts[-1]) / wsum
+                if wsum > 0
+                else 0.5 * (vals[-2] + vals[-1])
+            )
             ln = lens[-2] + lens[-1]
             del vals[-1], wts[-1], lens[-1]
             vals[-1], wts[-1], lens[-1] = v, wsum, ln

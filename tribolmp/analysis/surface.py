@@ -63,7 +63,9 @@ class SurfaceProfile(FromOutput, AnalysisBase):
         m^3 in 3D), ``y_bottom_m``, ``rms_m`` (per frame, m) and ``units``.
     """
 
-    def __init__(self, universe, meta: MCAMeta, *, column_width_m=None, bulk_margin_m=None, **kwargs):
+    def __init__(
+        self, universe, meta: MCAMeta, *, column_width_m=None, bulk_margin_m=None, **kwargs
+    ):
         super().__init__(universe.trajectory, **kwargs)
         self._meta = meta
         d = meta.automaton_diameter_m
@@ -83,12 +85,18 @@ class SurfaceProfile(FromOutput, AnalysisBase):
         mols = ts0.data["mol"].astype(int)
         self._lower = np.isin(mols, (MOL_BASE, MOL_LOWER))
         if self._lower.sum() < self._nx:
-            raise DataFileError(f"trajectory: mol: expected lower-side automata (mol 1, 2) in every column, "
-                                f"got {int(self._lower.sum())} for {self._nx} columns")
+            raise DataFileError(
+                f"trajectory: mol: expected lower-side automata (mol 1, 2) in every column, "
+                f"got {int(self._lower.sum())} for {self._nx} columns"
+            )
         y0 = interface_height(h0, mols)
-        radius = float(np.median(ts0.data["radius"])) if "radius" in ts0.data else 0.5 * self._meta.automaton_diameter_m / NM
-        # the interface region reaches down to the deepest valley of the initial roughness: measure the
-        # bulk density below it (the lowest upper-body automaton bounds the valleys from below)
+        radius = (
+            float(np.median(ts0.data["radius"]))
+            if "radius" in ts0.data
+            else 0.5 * self._meta.automaton_diameter_m / NM
+        )
+        # the interface region reaches down to the deepest valley of the initial roughness: measure
+        # the bulk density below it (the lowest upper-body automaton bounds the valleys from below)
         up = ~self._lower
         top = min(y0, float(h0[up].min()) if up.any() else y0)
         y_bottom, hi, n_in, how = self._bulk_window(h0[self._lower], top, radius)
@@ -105,12 +113,14 @@ class SurfaceProfile(FromOutput, AnalysisBase):
         self._time = np.zeros(n)
 
     def _bulk_window(self, h, top, radius):
-        """(bottom edge, top edge, automata between them, method) of the bulk used for the density (nm).
+        """Return the bulk window used for the density.
 
-        A lattice (the initial configuration the driver builds) is cut between its rows: rows are the
-        clusters of heights separated by gaps > d/4; the bulk is the contiguous run of rows from the
-        bottom that are as full as the lowest rows and lie below ``top - margin``, from half a row
-        spacing below the first to half a spacing above the last, so it holds whole rows and the
+        (bottom edge (nm), top edge (nm), automata between them, method).
+
+        A lattice (the initial configuration the driver builds) is cut between its rows: rows are
+        the clusters of heights separated by gaps > d/4; the bulk is the contiguous run of rows from
+        the bottom that are as full as the lowest rows and lie below ``top - margin``, from half a
+        row spacing below the first to half a spacing above the last, so it holds whole rows and the
         density is exact for a perfect lattice.  Otherwise (no row structure) the density is the
         count in a window ``margin`` inside the material, which is biased by up to one row / window.
         """
@@ -123,8 +133,8 @@ class SurfaceProfile(FromOutput, AnalysisBase):
         centres = np.array([hs[a:b].mean() for a, b in zip(starts, ends)])
         sizes = ends - starts
         limit = top - self._margin_nm
-        # whole rows only: contiguous from the bottom, each as full as the lowest rows (the rough surface's
-        # partly filled rows and anything within the margin of the interface are left out)
+        # whole rows only: contiguous from the bottom, each as full as the lowest rows (the rough
+        # surface's partly filled rows and anything within the margin of the interface are left out)
         full = sizes >= 0.95 * np.median(sizes[: min(3, sizes.size)])
         keep = np.cumprod(full & (centres + 0.5 * d <= limit)).astype(bool)
         if keep.sum() >= 3:
@@ -138,7 +148,12 @@ class SurfaceProfile(FromOutput, AnalysisBase):
             if hi - lo > 2 * radius:
                 n_in = int(((h >= lo) & (h < hi)).sum())
                 # the window's density applied from the bottom edge
-                return y_bottom, y_bottom + (hi - lo), n_in, f"window {margin * NM:.3g} m inside the material"
+                return (
+                    y_bottom,
+                    y_bottom + (hi - lo),
+                    n_in,
+                    f"window {margin * NM:.3g} m inside the material",
+                )
         raise DataFileError(
             f"trajectory: lower body: expected material between its bottom and the interface, got "
             f"{max(top - y_bottom, 0.0) * NM:.3g} m")
@@ -165,7 +180,14 @@ class SurfaceProfile(FromOutput, AnalysisBase):
         r.y_bottom_m = self._y_bottom * NM
         r.bulk_method = self._bulk_method
         r.rms_m = (h_nm - h_nm.mean(axis=1, keepdims=True)).std(axis=1) * NM
-        r.units = {"x_m": "m", "t_s": "s", "h_m": "m", "column_width_m": "m",
-                   "bulk_density": "1/m^2" if dim == 2 else "1/m^3", "y_bottom_m": "m", "rms_m": "m"}
+        r.units = {
+            "x_m": "m",
+            "t_s": "s",
+            "h_m": "m",
+            "column_width_m": "m",
+            "bulk_density": "1/m^2" if dim == 2 else "1/m^3",
+            "y_bottom_m": "m",
+            "rms_m": "m",
+        }
         if not math.isfinite(float(r.h_m.sum())):
             raise DataFileError("trajectory: positions: expected finite heights, got NaN/inf")

@@ -58,7 +58,9 @@ def write_dump(path, frames) -> Path:
             n = pos.shape[0]
             ids = np.asarray(fr.get("id", np.arange(1, n + 1)))
             mol = np.asarray(fr["mol"])
-            typ = np.asarray(fr.get("type", np.where(mol == MOL_BASE, 2, np.where(mol == MOL_SLIDER, 3, 1))))
+            typ = np.asarray(
+                fr.get("type", np.where(mol == MOL_BASE, 2, np.where(mol == MOL_SLIDER, 3, 1)))
+            )
             box = np.asarray(fr["box"], dtype=float)
             fh.write(f"ITEM: TIMESTEP\n{int(fr['step'])}\nITEM: NUMBER OF ATOMS\n{n}\n")
             fh.write("ITEM: BOX BOUNDS pp ff pp\n")
@@ -67,8 +69,16 @@ def write_dump(path, frames) -> Path:
             extra = fr.get("extra") or {}
             fh.write("ITEM: ATOMS " + " ".join(DUMP_COLUMNS + tuple(extra)) + "\n")
             table = np.column_stack(
-                [ids, mol, typ, pos, np.asarray(fr["vel"], dtype=float), np.broadcast_to(fr["radius"], (n,)),
-                 np.broadcast_to(fr["nbond"], (n,))] + [np.broadcast_to(v, (n,)) for v in extra.values()]
+                [
+                    ids,
+                    mol,
+                    typ,
+                    pos,
+                    np.asarray(fr["vel"], dtype=float),
+                    np.broadcast_to(fr["radius"], (n,)),
+                    np.broadcast_to(fr["nbond"], (n,)),
+                ]
+                + [np.broadcast_to(v, (n,)) for v in extra.values()]
             )
             np.savetxt(fh, table, fmt=_FMT + " %d" * len(extra))
     return path
@@ -103,7 +113,14 @@ def write_friction_csv(path, time_s, friction_N, normal_N, top_x_m) -> Path:
     """Write ``friction.csv`` (SI columns ``time_s,friction_N,normal_N,top_x_m``)."""
     path = Path(path)
     table = np.column_stack([time_s, friction_N, normal_N, top_x_m])
-    np.savetxt(path, table, delimiter=",", header="time_s,friction_N,normal_N,top_x_m", comments="", fmt="%.10g")
+    np.savetxt(
+        path,
+        table,
+        delimiter=",",
+        header="time_s,friction_N,normal_N,top_x_m",
+        comments="",
+        fmt="%.10g",
+    )
     return path
 
 
@@ -114,14 +131,31 @@ def erf_width(sigma: float, lo: float = 0.1, hi: float = 0.9) -> float:
 
 def _box(L, H, dim, depth=None):
     depth = L if depth is None else depth
-    return np.array([[0.0, L], [0.0, H], [0.0, depth if dim == 3 else 0.0]]) if dim == 3 else np.array(
-        [[0.0, L], [0.0, H], [-0.5, 0.5]]
+    return (
+        np.array([[0.0, L], [0.0, H], [0.0, depth if dim == 3 else 0.0]])
+        if dim == 3
+        else np.array([[0.0, L], [0.0, H], [-0.5, 0.5]])
     )
 
 
-def make_shear_mixing(out_dir, rng, *, n_atoms=3000, n_frames=8, velocity=10.0, diameter=2.5e-9,
-                      height=40e-9, length=40e-9, interface=20e-9, sigma_v=3e-9, offset_v=1e-9,
-                      sigma_c=2e-9, noise=0.05, wave_amplitude=0.0, roughness_amplitude=0.0) -> dict:
+def make_shear_mixing(
+    out_dir,
+    rng,
+    *,
+    n_atoms=3000,
+    n_frames=8,
+    velocity=10.0,
+    diameter=2.5e-9,
+    height=40e-9,
+    length=40e-9,
+    interface=20e-9,
+    sigma_v=3e-9,
+    offset_v=1e-9,
+    sigma_c=2e-9,
+    noise=0.05,
+    wave_amplitude=0.0,
+    roughness_amplitude=0.0,
+) -> dict:
     """Shear and mixing with error-function profiles of known width.
 
     Frame 0 is unmixed: lower body below ``interface``, upper above.  In the
@@ -168,7 +202,9 @@ def make_shear_mixing(out_dir, rng, *, n_atoms=3000, n_frames=8, velocity=10.0, 
         vx[mol == MOL_SLIDER] = velocity
         pos = np.column_stack([x, y, np.zeros(n_atoms)])
         vel = np.column_stack([vx, np.zeros(n_atoms), np.zeros(n_atoms)])
-        frames.append(dict(step=k * every, box=_box(L, H, 2), mol=mol, pos=pos, vel=vel, radius=1.25, nbond=6))
+        frames.append(
+            dict(step=k * every, box=_box(L, H, 2), mol=mol, pos=pos, vel=vel, radius=1.25, nbond=6)
+        )
     write_dump(out / "traj.lammpstrj", frames)
     write_meta(out, dt_s=dt, dump_interval_steps=every, velocity_m_s=velocity, diameter_m=diameter,
                box_m=_box(L, H, 2) * nm)
@@ -212,8 +248,16 @@ def make_walkers(out_dir, rng, *, diffusion=2e-9, n_walkers=200, n_frames=60, ve
     lat = [0] if dim == 2 else [0, 2]
     # rows: base, two lower bulk rows (> 2 d from the interface), the lower and upper surface rows
     # (d/2 from it), two upper bulk rows, slider
-    rows = [(0.5 * d, MOL_BASE, 0), (1.8 * d, MOL_LOWER, 0), (2.8 * d, MOL_LOWER, 0), (y0 - 0.5 * d, MOL_LOWER, 1),
-            (y0 + 0.5 * d, MOL_UPPER, 1), (7.2 * d, MOL_UPPER, 0), (8.2 * d, MOL_UPPER, 0), (9.5 * d, MOL_SLIDER, 0)]
+    rows = [
+        (0.5 * d, MOL_BASE, 0),
+        (1.8 * d, MOL_LOWER, 0),
+        (2.8 * d, MOL_LOWER, 0),
+        (y0 - 0.5 * d, MOL_LOWER, 1),
+        (y0 + 0.5 * d, MOL_UPPER, 1),
+        (7.2 * d, MOL_UPPER, 0),
+        (8.2 * d, MOL_UPPER, 0),
+        (9.5 * d, MOL_SLIDER, 0),
+    ]
     heights, mols, walk = [], [], []
     for h, m, w in rows:
         n = n_walkers if w else max(4, int(L / d))
@@ -251,18 +295,43 @@ def make_walkers(out_dir, rng, *, diffusion=2e-9, n_walkers=200, n_frames=60, ve
             pos[:, a] = np.mod(pos[:, a], L)
         vel = np.zeros((n, 3))
         vel[moving, 0] = velocity
-        frames.append(dict(step=k * every, box=box, mol=mol, pos=pos, vel=vel, radius=d / 2, nbond=6))
+        frames.append(
+            dict(step=k * every, box=box, mol=mol, pos=pos, vel=vel, radius=d / 2, nbond=6)
+        )
     write_dump(out / "traj.lammpstrj", frames)
-    write_meta(out, dt_s=interval / every, dump_interval_steps=every, velocity_m_s=velocity, diameter_m=diameter,
-               box_m=box * nm, dim=dim)
+    write_meta(
+        out,
+        dt_s=interval / every,
+        dump_interval_steps=every,
+        velocity_m_s=velocity,
+        diameter_m=diameter,
+        box_m=box * nm,
+        dim=dim,
+    )
     return {"diffusion_m2_s": diffusion, "lateral_dims": len(lat), "n_surface": 2 * n_walkers,
             "velocity_m_s": velocity}
 
 
-def make_transfer(out_dir, rng, *, n_per_row=20, n_frames=40, velocity=10.0, interval=1e-10, diameter=2.5e-9,
-                  n_transfer_up=3, n_transfer_down=2, n_layer=4, t_transfer=10, t_detach=15, t_reattach=25,
-                  n_flicker=3, t_flicker=30, flicker_frames=2,
-                  bond_events=((5, 3, 2), (12, 4, 0), (20, 0, 5))) -> dict:
+def make_transfer(
+    out_dir,
+    rng,
+    *,
+    n_per_row=20,
+    n_frames=40,
+    velocity=10.0,
+    interval=1e-10,
+    diameter=2.5e-9,
+    n_transfer_up=3,
+    n_transfer_down=2,
+    n_layer=4,
+    t_transfer=10,
+    t_detach=15,
+    t_reattach=25,
+    n_flicker=3,
+    t_flicker=30,
+    flicker_frames=2,
+    bond_events=((5, 3, 2), (12, 4, 0), (20, 0, 5)),
+) -> dict:
     """Scripted transfer, detachment/reattachment and link changes with exact answers.
 
     Two surface rows (one per body, within one diameter of the interface) and
@@ -291,8 +360,16 @@ def make_transfer(out_dir, rng, *, n_per_row=20, n_frames=40, velocity=10.0, int
     nm, d = 1e-9, diameter / 1e-9
     L = n_per_row * d
     y0 = 5 * d
-    rows = [(0.5 * d, MOL_BASE), (1.8 * d, MOL_LOWER), (2.8 * d, MOL_LOWER), (y0 - 0.5 * d, MOL_LOWER),
-            (y0 + 0.5 * d, MOL_UPPER), (7.2 * d, MOL_UPPER), (8.2 * d, MOL_UPPER), (9.5 * d, MOL_SLIDER)]
+    rows = [
+        (0.5 * d, MOL_BASE),
+        (1.8 * d, MOL_LOWER),
+        (2.8 * d, MOL_LOWER),
+        (y0 - 0.5 * d, MOL_LOWER),
+        (y0 + 0.5 * d, MOL_UPPER),
+        (7.2 * d, MOL_UPPER),
+        (8.2 * d, MOL_UPPER),
+        (9.5 * d, MOL_SLIDER),
+    ]
     h = np.concatenate([np.full(n_per_row, r[0]) for r in rows])
     mol = np.concatenate([np.full(n_per_row, r[1]) for r in rows])
     x0 = np.tile((np.arange(n_per_row) + 0.5) * d, len(rows))
@@ -318,7 +395,11 @@ def make_transfer(out_dir, rng, *, n_per_row=20, n_frames=40, velocity=10.0, int
     for k in range(n_frames):
         for (kk, nbr, nfo) in bond_events:
             if kk + 1 == k:  # changes between frame kk and kk+1
-                chosen = rng.choice(np.nonzero(np.isin(mol, (MOL_LOWER, MOL_UPPER)))[0], 2 * (nbr + nfo), replace=False)
+                chosen = rng.choice(
+                    np.nonzero(np.isin(mol, (MOL_LOWER, MOL_UPPER)))[0],
+                    2 * (nbr + nfo),
+                    replace=False,
+                )
                 nbond = nbond.copy()
                 nbond[chosen[: 2 * nbr]] -= 1
                 nbond[chosen[2 * nbr:]] += 1
@@ -335,10 +416,20 @@ def make_transfer(out_dir, rng, *, n_per_row=20, n_frames=40, velocity=10.0, int
             hk[down_ids] = y0 - 0.5 * d - 0.01
         pos = np.column_stack([np.mod(xs[k], L), hk, np.zeros(n)])
         vel = np.column_stack([step_v[k], np.zeros(n), np.zeros(n)])
-        frames.append(dict(step=k * every, box=box, mol=mol, pos=pos, vel=vel, radius=d / 2, nbond=nb_frames[k]))
+        frames.append(
+            dict(
+                step=k * every, box=box, mol=mol, pos=pos, vel=vel, radius=d / 2, nbond=nb_frames[k]
+            )
+        )
     write_dump(out / "traj.lammpstrj", frames)
-    write_meta(out, dt_s=interval / every, dump_interval_steps=every, velocity_m_s=velocity, diameter_m=diameter,
-               box_m=box * nm)
+    write_meta(
+        out,
+        dt_s=interval / every,
+        dump_interval_steps=every,
+        velocity_m_s=velocity,
+        diameter_m=diameter,
+        box_m=box * nm,
+    )
     # exact answers for window = 1: classified frames are 1..T-1, state k uses interval k-1 -> k
     w = 1
     span = (n_frames - 1 - w) * interval
@@ -374,9 +465,24 @@ def make_transfer(out_dir, rng, *, n_per_row=20, n_frames=40, velocity=10.0, int
     }
 
 
-def make_oscillating_friction(out_dir, rng, *, n=200, dt=5e-12, mu=0.15, amplitude=0.45, period=0.45e-9,
-                              normal=2e-8, normal_amplitude=0.0, noise=0.01, phase=0.0, velocity=5.0) -> dict:
-    """friction.csv with periodic forces: F_t = F_n0 (mu + a sin(w t + phase) + noise), F_n = F_n0 (1 + b sin(w t)).
+def make_oscillating_friction(
+    out_dir,
+    rng,
+    *,
+    n=200,
+    dt=5e-12,
+    mu=0.15,
+    amplitude=0.45,
+    period=0.45e-9,
+    normal=2e-8,
+    normal_amplitude=0.0,
+    noise=0.01,
+    phase=0.0,
+    velocity=5.0,
+) -> dict:
+    """friction.csv with periodic forces.
+
+    F_t = F_n0 (mu + a sin(w t + phase) + noise), F_n = F_n0 (1 + b sin(w t)).
 
     ``amplitude`` a of order mu with a ``period`` of about half the run mimics
     the stick-slip-like swing of a short MCA run (the 1 ns smoke run: mu(t)
@@ -399,7 +505,11 @@ def make_oscillating_friction(out_dir, rng, *, n=200, dt=5e-12, mu=0.15, amplitu
     fn = normal * (1.0 + normal_amplitude * np.sin(w * t))
     ft = normal * (mu + amplitude * np.sin(w * t + phase) + noise * rng.standard_normal(n))
     write_friction_csv(out / "friction.csv", t, ft, fn, velocity * t)
-    return {"mu": mu, "mean_of_ratios": mu / math.sqrt(1.0 - normal_amplitude**2), "period_s": period}
+    return {
+        "mu": mu,
+        "mean_of_ratios": mu / math.sqrt(1.0 - normal_amplitude**2),
+        "period_s": period,
+    }
 
 
 def ar1_mean_stderr(phi: float, sigma_eps: float, n: int) -> float:

@@ -49,8 +49,16 @@ from .diffusion import Unwrapper, surface_selection
 from .outputs import LINK_COLUMNS, MOL_LOWER, MOL_SLIDER, MOL_UPPER, NM, FromOutput, MCAMeta
 from .profiles import interface_height
 
-__all__ = ["BondTurnover", "MassTransfer", "STATE_LOWER", "STATE_LAYER", "STATE_UPPER", "count_events",
-           "persistent_membership", "counting_rate"]
+__all__ = [
+    "BondTurnover",
+    "MassTransfer",
+    "STATE_LOWER",
+    "STATE_LAYER",
+    "STATE_UPPER",
+    "count_events",
+    "persistent_membership",
+    "counting_rate",
+]
 
 #: Velocity states of an automaton.
 STATE_LOWER, STATE_LAYER, STATE_UPPER = 0, 1, 2
@@ -118,7 +126,12 @@ class BondTurnover(FromOutput, AnalysisBase):
         r.formed_per_s = r.formed_total / span if span > 0 else float("nan")
         mean_links = float(self._bonds.mean()) if self.n_frames else 0.0
         r.break_rate_per_link = r.broken_per_s / mean_links if mean_links > 0 else float("nan")
-        r.units = {"time_s": "s", "broken_per_s": "1/s", "formed_per_s": "1/s", "break_rate_per_link": "1/s"}
+        r.units = {
+            "time_s": "s",
+            "broken_per_s": "1/s",
+            "formed_per_s": "1/s",
+            "break_rate_per_link": "1/s",
+        }
 
 
 def count_events(states: np.ndarray, own: np.ndarray) -> dict[str, np.ndarray]:
@@ -252,7 +265,16 @@ class MassTransfer(FromOutput, AnalysisBase):
         a diameter, minus that number in the reference frame.
     """
 
-    def __init__(self, universe, meta: MCAMeta, *, window=None, persistence_s=None, surface_depth_m=None, **kwargs):
+    def __init__(
+        self,
+        universe,
+        meta: MCAMeta,
+        *,
+        window=None,
+        persistence_s=None,
+        surface_depth_m=None,
+        **kwargs,
+    ):
         super().__init__(universe.trajectory, **kwargs)
         self._meta = meta
         self._auto_window = window is None
@@ -265,7 +287,9 @@ class MassTransfer(FromOutput, AnalysisBase):
             persistence_s = 2 * meta.automaton_diameter_m / meta.velocity_m_s
         self._persist_s = check_range("persistence_s", persistence_s, 0.0, None, unit="s")
         depth = 2 * meta.automaton_diameter_m if surface_depth_m is None else surface_depth_m
-        self._depth_nm = check_range("surface_depth_m", depth, 0.0, None, lo_open=True, unit="m") / NM
+        self._depth_nm = (
+            check_range("surface_depth_m", depth, 0.0, None, lo_open=True, unit="m") / NM
+        )
 
     def _prepare(self):
         ax = self._meta.normal_axis
@@ -305,7 +329,9 @@ class MassTransfer(FromOutput, AnalysisBase):
             xu = self._unwrap.update(x, L)
         self._xs[i] = xu[self._body, 0]
         cross = next((ts.data[c] for c in LINK_COLUMNS["n_cross_body_links"] if c in ts.data), None)
-        links = next((ts.data[c] for c in LINK_COLUMNS["n_links"] if c in ts.data), ts.data.get("c_nbond"))
+        links = next(
+            (ts.data[c] for c in LINK_COLUMNS["n_links"] if c in ts.data), ts.data.get("c_nbond")
+        )
         if cross is not None and links is not None:
             if self._linked is None:
                 self._linked = np.zeros((self.n_frames, self._body.size), dtype=bool)
@@ -329,7 +355,10 @@ class MassTransfer(FromOutput, AnalysisBase):
             r.window_limited = True
         w = self._w
         if T <= w + 1:
-            raise DataFileError(f"trajectory: frames: expected more than window+1 = {w + 1} analysed frames, got {T}")
+            raise DataFileError(
+                "trajectory: frames: expected more than "
+                f"window+1 = {w + 1} analysed frames, got {T}"
+            )
         dt = self._time[w:] - self._time[:-w]
         u = (self._xs[w:] - self._xs[:-w]) * NM / dt[:, None]  # m/s, shape (T-w, N)
         if np.isfinite(self._xslider).all():
@@ -344,16 +373,23 @@ class MassTransfer(FromOutput, AnalysisBase):
         states[u > 2 * vs[:, None] / 3] = STATE_UPPER
         r.membership_source = "velocity"
         if self._linked is not None:
-            # the mca law dumps each automaton's links to the other body: linked there = in the other body,
-            # whatever its velocity (an automaton welded to the counter-body but momentarily at rest)
-            other_state = np.where(self._own == STATE_LOWER, STATE_UPPER, STATE_LOWER).astype(np.int8)
+            # the mca law dumps each automaton's links to the other body:
+            # linked there = in the other body, whatever its velocity (an
+            # automaton welded to the counter-body but momentarily at rest)
+            other_state = np.where(self._own == STATE_LOWER, STATE_UPPER, STATE_LOWER).astype(
+                np.int8
+            )
             linked = self._linked[w:]
             states = np.where(linked, other_state[None, :], states)
             r.membership_source = "velocity and links to the other body"
         t = self._time[w:]
         span = float(t[-1] - t[0])
         frame_dt = float(np.median(np.diff(t))) if t.size > 1 else float("nan")
-        P = max(w, int(math.ceil(self._persist_s / frame_dt - 1e-9))) if np.isfinite(frame_dt) and frame_dt > 0 else w
+        P = (
+            max(w, int(math.ceil(self._persist_s / frame_dt - 1e-9)))
+            if np.isfinite(frame_dt) and frame_dt > 0
+            else w
+        )
         r.persistence_limited = False
         if self._auto_persist and P > max(1, states.shape[0] // 4):
             P = max(1, states.shape[0] // 4)
@@ -384,7 +420,9 @@ class MassTransfer(FromOutput, AnalysisBase):
         r.transfer_per_s, r.transfer_per_s_err = counting_rate(n_transfer, span)
         r.transfer_per_m, r.transfer_per_m_err = counting_rate(n_transfer, distance)
         r.transfer_rate, r.transfer_rate_err = counting_rate(n_transfer, ns * distance)
-        r.net_transfer_lower_to_upper = int((lo_in_up[-1] - lo_in_up[0]) - (up_in_lo[-1] - up_in_lo[0]))
+        r.net_transfer_lower_to_upper = int(
+            (lo_in_up[-1] - lo_in_up[0]) - (up_in_lo[-1] - up_in_lo[0])
+        )
         r.transferred_lower_to_upper = lo_in_up
         r.transferred_upper_to_lower = up_in_lo
         d = self._meta.automaton_diameter_m
@@ -412,8 +450,19 @@ class MassTransfer(FromOutput, AnalysisBase):
         r.crossed_lower_up = self._crossed[:, 0]
         r.crossed_upper_down = self._crossed[:, 1]
         r.interface_height_m = self._y0 * NM
-        r.units = {"time_s": "s", "span_s": "s", "sliding_distance_m": "m", "persistence_s": "s",
-                   "transfer_per_s": "1/s", "transfer_per_m": "1/m", "transfer_rate": "1/m",
-                   "wear_lower_per_s": "1/s", "wear_lower_per_m": "1/m", "wear_upper_per_s": "1/s",
-                   "wear_upper_per_m": "1/m", "wear_lower_kg_per_m": "kg/m", "wear_upper_kg_per_m": "kg/m",
-                   "automaton_mass_kg": "kg"}
+        r.units = {
+            "time_s": "s",
+            "span_s": "s",
+            "sliding_distance_m": "m",
+            "persistence_s": "s",
+            "transfer_per_s": "1/s",
+            "transfer_per_m": "1/m",
+            "transfer_rate": "1/m",
+            "wear_lower_per_s": "1/s",
+            "wear_lower_per_m": "1/m",
+            "wear_upper_per_s": "1/s",
+            "wear_upper_per_m": "1/m",
+            "wear_lower_kg_per_m": "kg/m",
+            "wear_upper_kg_per_m": "kg/m",
+            "automaton_mass_kg": "kg",
+        }
