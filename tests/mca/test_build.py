@@ -22,7 +22,8 @@ def test_self_affine_profile_has_exact_rms_and_hurst_slope(rng):
     h = self_affine_profile(4096, 2.0, 0.8, rng)
     assert h.mean() == pytest.approx(0.0, abs=1e-12)
     assert h.std() == pytest.approx(2.0, rel=1e-12)
-    # PSD ~ q^-(1 + 2H): fitted slope of one realisation within 0.15 of -2.6 (chi^2 scatter of 2000 modes)
+    # PSD ~ q^-(1 + 2H): fitted slope of one realisation within 0.15 of -2.6
+    # (chi^2 scatter of 2000 modes)
     q = np.fft.rfftfreq(h.size)[1:]
     psd = np.abs(np.fft.rfft(h))[1:] ** 2
     slope = np.polyfit(np.log(q), np.log(psd), 1)[0]

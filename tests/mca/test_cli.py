@@ -35,15 +35,19 @@ def test_smoke_preset_json(cli, lammps_available, tmp_path):
         assert rates["mu"] == data["mu"] and rates["time_s"] == pytest.approx(data["time_s"])
         # issue 12: what rates.json flags is said on stderr too (it printed only mu before)
         assert ("mu is NOT steady" in res.stderr) == (rates.get("mu_steady") is False)
-        assert ("no sheared (quasi-liquid) layer was measured" in res.stderr) == (not rates.get("layer_depth_m"))
+        assert ("no sheared (quasi-liquid) layer was measured" in res.stderr) == (
+            not rates.get("layer_depth_m")
+        )
 
 
 @pytest.mark.lammps
 def test_scene_file_and_overrides(cli, lammps_available, tmp_path):
     scene = tmp_path / "s.toml"
     scene.write_text(
-        "[nanoscale]\nautomaton_diameter = 2.5e-9\ndim = 2\nsliding_velocity = 2.0\npressure = 50e6\n"
-        "duration = 0.1e-9\nbox_length = 25e-9\nbody_height = 10e-9\nroughness_rms = 1e-9\npreset = 'smoke'\n"
+        "[nanoscale]\nautomaton_diameter = 2.5e-9\ndim "
+        "= 2\nsliding_velocity = 2.0\npressure = 50e6\n"
+        "duration = 0.1e-9\nbox_length = 25e-9\nbody_height "
+        "= 10e-9\nroughness_rms = 1e-9\npreset = 'smoke'\n"
     )
     out = tmp_path / "run"
     res = cli("mca", "run", scene, "--velocity", "3", "--out", out, "--json", timeout=120)

@@ -52,7 +52,14 @@ def test_every_python_variable_is_declared_by_the_deck(changes):
     # smoothing, which both decks must share (test_friction_and_tension_decks_share_the_smoothing)
     # (and relink_deferred, set by a law fragment whose re-linking fix the driver includes later;
     # csv_extra/csv_file, set by a law fragment that prints more friction.csv columns)
-    assert declared - set(v) == {"restart", "resume", "smooth", "relink_deferred", "csv_extra", "csv_file"}
+    assert declared - set(v) == {
+        "restart",
+        "resume",
+        "smooth",
+        "relink_deferred",
+        "csv_extra",
+        "csv_file",
+    }
     # normal force = pressure x area, LAMMPS force unit 1e-12 N, pressure unit 1e6 Pa
     assert float(v["FN"]) * 1e-12 == pytest.approx(params.pressure * 50e-9 * 2.5e-9, rel=1e-9)
     assert int(v["restart_every"]) % int(v["print_every"]) == 0
@@ -91,10 +98,24 @@ def test_standalone_defaults_are_the_mapped_smoke_values(law):
     v = deck_variables(params, data="s.data", out=".", seed=1, geom_info=info)
     fragment = _index_defaults((laws_dir() / f"{v['bond']}.in").read_text())
     deck = _index_defaults(deck_path("mca_friction").read_text())
-    # the deck's own defaults (timestep, force, ...) are those of its default law, bpm/spring/plastic
+    # the deck's own defaults (timestep, force, ...) are those of its
+    # default law, bpm/spring/plastic
     defaults = {**(deck if law == "bpm/spring/plastic" else {}), **fragment}
-    skip = {"data", "out", "lawdir", "drive", "seed", "bond", "sink_lo", "sink_hi", "steps",
-            "thermo_every", "dump_every", "print_every", "restart_every"}  # paths, modes, run lengths
+    skip = {
+        "data",
+        "out",
+        "lawdir",
+        "drive",
+        "seed",
+        "bond",
+        "sink_lo",
+        "sink_hi",
+        "steps",
+        "thermo_every",
+        "dump_every",
+        "print_every",
+        "restart_every",
+    }  # paths, modes, run lengths
     for name, value in v.items():
         if name in skip or name not in defaults:
             continue
@@ -115,7 +136,9 @@ def test_friction_and_tension_decks_share_the_smoothing():
     for kw in ("plastic", "rotational"):
         frag = (laws_dir() / f"{kw}.in").read_text()
         styles = re.findall(r'"bond_style\s+(\S+)([^"]*)"', frag)
-        assert len(styles) == 2 and all(opts.split() == ["smooth", "${smooth}"] for _s, opts in styles)
+        assert len(styles) == 2 and all(
+            opts.split() == ["smooth", "${smooth}"] for _s, opts in styles
+        )
 
 
 def _doc_commands() -> list[str]:
@@ -132,7 +155,9 @@ def test_documented_deck_commands_name_declared_variables():
         words = cmd.split()
         deck = Path(words[words.index("-in") + 1]).stem
         names = [words[i + 1] for i, w in enumerate(words) if w == "-var"]
-        keyword = words[words.index("bond", words.index("-var")) + 1] if "bond" in names else "plastic"
+        keyword = (
+            words[words.index("bond", words.index("-var")) + 1] if "bond" in names else "plastic"
+        )
         assert set(names) <= _declared(deck, keyword), cmd
 
 

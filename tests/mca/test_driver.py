@@ -1,4 +1,4 @@
-"""MCA driver: output contract, load and kinematics, 3D and bpm/rotational, resume, failures, MPI."""
+"""MCA driver: outputs, load, kinematics, 3D and bpm/rotational, resume, failures, MPI."""
 
 from __future__ import annotations
 
@@ -99,10 +99,10 @@ def test_slider_kinematics_follow_the_ramp(smoke_run):
 
 
 def test_normal_force_is_controlled(smoke_run):
-    # momentum balance of the slider: F_body = F_N + c v_y + M a.  Averaged over the last 40 % the
-    # dashpot (compaction, dilatancy) and inertia terms leave up to ~15 % in these short runs (measured
-    # 0.85-0.98 F_N over seeds): 20 % bound; without load control the mean would be 0 or unbounded
-    # (free fall)
+    # momentum balance of the slider: F_body = F_N + c v_y + M a.  Averaged over
+    # the last 40 % the dashpot (compaction, dilatancy) and inertia terms leave
+    # up to ~15 % in these short runs (measured 0.85-0.98 F_N over seeds): 20 %
+    # bound; without load control the mean would be 0 or unbounded (free fall)
     out, _ = smoke_run
     meta = json.loads((out / "meta.json").read_text())
     fr = _friction(out)
@@ -155,8 +155,9 @@ def test_resume_reaches_the_uninterrupted_result(tmp_path, monkeypatch, lammps_a
     a, b = _friction(tmp_path / "full"), _friction(part_dir)
     assert a.shape == b.shape  # rows after the restart were dropped and re-run, none duplicated
     assert np.array_equal(a[:, 0], b[:, 0])
-    # one rank: LAMMPS restarts the granular/BPM state exactly (restart steps fall on whole averaging
-    # windows of friction.csv), so the resumed run is bit-identical to the uninterrupted one
+    # one rank: LAMMPS restarts the granular/BPM state exactly (restart
+    # steps fall on whole averaging windows of friction.csv), so the resumed
+    # run is bit-identical to the uninterrupted one
     assert np.array_equal(a, b)
     assert kept_step < full.nit
     dump_steps = [
@@ -247,7 +248,8 @@ def test_deck_runs_standalone_with_lmp(smoke_run, tmp_path):
     assert proc.returncode == 0, proc.stdout[-2000:]
     fr = _friction(tmp_path)
     ref = _friction(out)
-    # same deck, same data, same variables: the standalone run reproduces the Python-driven one bit for bit
+    # same deck, same data, same variables: the standalone run reproduces
+    # the Python-driven one bit for bit
     n = len(fr)
     assert np.array_equal(fr, ref[:n])
 

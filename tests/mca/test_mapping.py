@@ -18,8 +18,9 @@ from tribolmp.lammps.mapping import (
 
 
 def test_central_spring_lattices_match_textbook_moduli():
-    # hexagonal spring network: E_2D = 2k/sqrt(3) (per unit thickness d), nu = 1/3;
-    # FCC nearest-neighbour springs along [100]: C11 = 2k/a, C12 = k/a -> E = 4k/(3a), nu = 1/3, a = sqrt(2) d
+    # hexagonal spring network: E_2D = 2k/sqrt(3) (per unit thickness d), nu
+    # = 1/3; FCC nearest-neighbour springs along [100]: C11 = 2k/a, C12 =
+    # k/a -> E = 4k/(3a), nu = 1/3, a = sqrt(2) d
     e2, nu2 = lattice_moduli(1.0, 0.0, 1.0, 2)
     e3, nu3 = lattice_moduli(1.0, 0.0, 1.0, 3)
     assert e2 == pytest.approx(2.0 / math.sqrt(3.0), rel=1e-12)
@@ -28,7 +29,8 @@ def test_central_spring_lattices_match_textbook_moduli():
 
 
 def test_hex_lattice_with_shear_springs_matches_closed_form():
-    # nu = (kn - ks) / (3 kn + ks), E = 2 sqrt(3) kn (kn + ks) / (3 kn + ks) / d (plane stress, thickness d)
+    # nu = (kn - ks) / (3 kn + ks), E = 2 sqrt(3) kn (kn + ks) / (3 kn + ks)
+    # / d (plane stress, thickness d)
     kn, ks = 3.0, 0.7
     e, nu = lattice_moduli(kn, ks, 1.0, 2)
     assert nu == pytest.approx((kn - ks) / (3 * kn + ks), rel=1e-12)
@@ -36,8 +38,8 @@ def test_hex_lattice_with_shear_springs_matches_closed_form():
 
 
 def test_verlet_limit_within_independent_bounds():
-    # omega_max^2 of the hexagonal spring lattice lies between that of one of its rows (a chain: 4 k/m)
-    # and the Gershgorin bound sum over 3 bond directions of 2 * 2 k/m = 12 k/m
+    # omega_max^2 of the hexagonal spring lattice lies between that of one of its rows (a
+    # chain: 4 k/m) and the Gershgorin bound sum over 3 bond directions of 2 * 2 k/m = 12 k/m
     f = stability_factor(2, 0.0)
     lam = (2.0 / f) ** 2
     assert 4.0 <= lam <= 12.0
@@ -80,7 +82,8 @@ def _check_plastic(res, spec, mode):
     assert res.youngs_modulus == pytest.approx(spec.youngs_modulus, rel=0.10)
     assert res.yield_strength == pytest.approx(spec.yield_strength, rel=0.15)
     assert res.ultimate_strength == pytest.approx(spec.ultimate_strength, rel=0.15)
-    # central springs: nu is fixed at the lattice's 1/3 (not steel's 0.3); the barostat lag allows 3 %
+    # central springs: nu is fixed at the lattice's 1/3 (not steel's 0.3);
+    # the barostat lag allows 3 %
     assert res.poisson_ratio == pytest.approx(1.0 / 3.0, rel=0.03)
     if mode == "tension":
         # past the failure strain the links rupture and the stress falls
@@ -110,7 +113,8 @@ def test_rotational_block_matches_e_nu_and_ultimate(lammps_available, dim, tmp_p
     spec = MaterialSpec(dim=dim, bond_style="bpm/rotational")
     res = measure_uniaxial(spec, mode="tension", out_dir=tmp_path, n=10 if dim == 2 else 4)
     assert res.youngs_modulus == pytest.approx(spec.youngs_modulus, rel=0.10)
-    # shear springs reproduce steel's nu; 0.01 absolute covers the barostat lag measured (0.295-0.298)
+    # shear springs reproduce steel's nu; 0.01 absolute covers the barostat
+    # lag measured (0.295-0.298)
     assert res.poisson_ratio == pytest.approx(0.3, abs=0.01)
     # brittle: rupture at sigma_u, no yield plateau
     assert res.ultimate_strength == pytest.approx(spec.ultimate_strength, rel=0.15)

@@ -1,4 +1,7 @@
-"""The bond-law registry (issue 11 item 4): one entry plus one deck fragment make a law; SI only at the boundary."""
+"""The bond-law registry (issue 11 item 4).
+
+One entry plus one deck fragment make a law; SI only at the boundary.
+"""
 
 from __future__ import annotations
 
@@ -41,7 +44,8 @@ def test_unknown_law_is_one_line():
 
 
 def test_param_defaults_are_the_scene_defaults():
-    # one default per quantity: MCAParams must not repeat a [nanoscale]/[material] default differently
+    # one default per quantity: MCAParams must not repeat a
+    # [nanoscale]/[material] default differently
     ours = {f.name: f.default for f in dataclasses.fields(MCAParams)}
     for section in (Nanoscale, Material):
         for f in dataclasses.fields(section):
@@ -76,7 +80,9 @@ def test_a_new_law_is_one_entry_plus_its_fragment(tmp_path, monkeypatch, lammps_
     monkeypatch.setattr(driver, "compute_rates_if_available", lambda out: None)
     params = preset_params("smoke", duration=0.1e-9, ramp_time=0.05e-9, bond_style="toy")
     run_mca(params, tmp_path / "toy", seed=3)
-    ref = preset_params("smoke", duration=0.1e-9, ramp_time=0.05e-9, bond_style="bpm/spring/plastic")
+    ref = preset_params(
+        "smoke", duration=0.1e-9, ramp_time=0.05e-9, bond_style="bpm/spring/plastic"
+    )
     run_mca(ref, tmp_path / "ref", seed=3)
     a = np.loadtxt(tmp_path / "toy" / "friction.csv", delimiter=",", skiprows=1)
     b = np.loadtxt(tmp_path / "ref" / "friction.csv", delimiter=",", skiprows=1)

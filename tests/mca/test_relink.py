@@ -1,4 +1,6 @@
-"""Re-linking of the bpm laws is not capped: two automata pulled apart and pushed together re-link every cycle.
+"""Re-linking of the bpm laws is not capped.
+
+Two automata pulled apart and pushed together re-link every cycle.
 
 ``fix bond/create ... iparam maxbond`` counts the links it created and never decrements the count
 when a BPM link breaks, so any finite quota caps re-links per automaton per run (issue 13: 455
@@ -40,8 +42,12 @@ def test_two_automata_relink_every_cycle(law, tmp_path, lammps_available):
     v = deck_variables(params, data="x", out=str(tmp_path), seed=1, geom_info=info)
     v = {k: v[k] for k in get_law(law).deck_variables(get_law(law).map_material(params.material()))}
     full = deck_variables(params, data="x", out=str(tmp_path), seed=1, geom_info=info)
-    v.update({k: full[k] for k in ("kc", "gc", "muc", "rebond_r", "rebond_factor", "dt", "comm_cut")})
-    v.update(lawdir=str(laws_dir()), bond=get_law(law).keyword, smooth="no", resume=0, rebond_every=20)
+    v.update(
+        {k: full[k] for k in ("kc", "gc", "muc", "rebond_r", "rebond_factor", "dt", "comm_cut")}
+    )
+    v.update(
+        lawdir=str(laws_dir()), bond=get_law(law).keyword, smooth="no", resume=0, rebond_every=20
+    )
     data = _two_automata(tmp_path, v)
     rebond_r = float(v["rebond_r"])
     # atom 2 oscillates along x between 0.92 and 1.12 rebond_r: it links when pushed below rebond_r
@@ -80,5 +86,6 @@ run {CYCLES * period_steps}
     # CYCLES > the 4 free bond slots per atom, so the slots of broken links are reused as well
     assert created >= CYCLES - 1, created
     assert created > 6  # the old quota (maxbond 6) allowed at most 6
-    # never more than the one possible link between the pair (duplicates excluded by the special list)
+    # never more than the one possible link between the pair (duplicates
+    # excluded by the special list)
     assert bonds_now <= 1

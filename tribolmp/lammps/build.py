@@ -1,4 +1,6 @@
-"""Geometry of the MCA friction experiment, built with ASE and written as a ``bpm/sphere`` data file.
+"""Geometry of the MCA friction experiment.
+
+Built with ASE and written as a ``bpm/sphere`` data file.
 
 The system is a stack along the normal axis ``y`` (sliding along ``x``,
 periodic in ``x``; in 3D also periodic in ``z``)::
@@ -190,9 +192,9 @@ def _poly_block(lx: float, height: float, d: float, grain_size: float, rng: np.r
     pts, owner = [], []
     for g in range(ngrain):
         c, s_ = math.cos(angles[g]), math.sin(angles[g])
-        rot = (base + offsets[g] @ np.array([[d, 0.0], [0.5 * d, math.sqrt(3.0) / 2.0 * d]])) @ np.array(
-            [[c, s_], [-s_, c]]
-        ) + centre
+        rot = (
+            base + offsets[g] @ np.array([[d, 0.0], [0.5 * d, math.sqrt(3.0) / 2.0 * d]])
+        ) @ np.array([[c, s_], [-s_, c]]) + centre
         inside = (rot[:, 0] >= 0) & (rot[:, 0] < lx) & (rot[:, 1] >= 0) & (rot[:, 1] < height)
         rot = rot[inside]
         dx = np.abs(rot[:, None, 0] - seeds[None, :, 0])
@@ -206,7 +208,8 @@ def _poly_block(lx: float, height: float, d: float, grain_size: float, rng: np.r
     p = np.concatenate(pts)
     tree = cKDTree(np.column_stack([np.mod(p[:, 0], lx), p[:, 1] + 1e3]), boxsize=[lx, 1e12])
     drop = np.zeros(len(p), bool)
-    # thin out grain boundaries (and the seam of a grain across x = 0): no two automata closer than 0.8 d
+    # thin out grain boundaries (and the seam of a grain across x = 0): no
+    # two automata closer than 0.8 d
     for a, b in sorted(map(tuple, tree.query_pairs(0.7 * d, output_type="ndarray"))):
         if not drop[a]:
             drop[b] = True
@@ -406,8 +409,11 @@ def build_system(
     box = np.array([[0.0, lx], [-d, ymax + 4.0 * d + body_height], zlim])
     atoms.cell = np.diag(box[:, 1] - box[:, 0])
     atoms.pbc = [True, False, True]
-    # grain boundaries leave gaps up to ~1.2 d: link across them too (links are stress-free at build)
-    bonds = _neighbour_bonds(pos, mol, box, d, dim, cutoff=1.2 if texture == "polycrystalline" else 1.05)
+    # grain boundaries leave gaps up to ~1.2 d: link across them too (links
+    # are stress-free at build)
+    bonds = _neighbour_bonds(
+        pos, mol, box, d, dim, cutoff=1.2 if texture == "polycrystalline" else 1.05
+    )
     interface = 0.5 * (y_mean_lo + (slider_bottom - body_height + shift))
     return MCAGeometry(
         atoms=atoms, bonds=bonds, dim=dim, d=d, box=box, interface_y=float(interface)
@@ -425,7 +431,7 @@ def _columns(pos: np.ndarray, d: float, lx: float, lz: float, dim: int) -> np.nd
 def _contact_shift(
     lo: np.ndarray, up: np.ndarray, d: float, lx: float, lz: float, dim: int, frac: float
 ) -> float:
-    """Vertical shift of the upper body that closes the gap in a fraction ``frac`` of the columns."""
+    """Vertical shift (m) of the upper body closing the gap in a fraction ``frac`` of columns."""
     base = lo[:, 1].max() + d - up[:, 1].min()  # highest asperities just touching
     if frac <= 0.0:
         return float(base)

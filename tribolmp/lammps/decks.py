@@ -50,5 +50,8 @@ def list_decks() -> list[str]:
 
 
 def laws_dir() -> Path:
-    """Folder of the bond-law deck fragments ``laws/<keyword>.in`` (see :mod:`tribolmp.lammps.laws`)."""
+    """Folder of the bond-law deck fragments ``laws/<keyword>.in``.
+
+    See :mod:`tribolmp.lammps.laws`.
+    """
     return decks_dir() / "laws"

@@ -72,7 +72,12 @@ def _bpm_map(spec):
 
 
 #: deck variable -> BondCoefficients attribute, per bpm law (LAMMPS nano units)
-_PLASTIC_VARIABLES = (("kn", "k_n"), ("ecrit", "eps_crit"), ("gn", "gamma_n"), ("ep", "eps_plastic"))
+_PLASTIC_VARIABLES = (
+    ("kn", "k_n"),
+    ("ecrit", "eps_crit"),
+    ("gn", "gamma_n"),
+    ("ep", "eps_plastic"),
+)
 _ROTATIONAL_VARIABLES = (
     ("kn", "k_n"), ("ks", "k_s"), ("kb", "k_b"), ("kt", "k_t"), ("fcr", "f_crit"),
     ("fscr", "fs_crit"), ("tbcr", "tb_crit"), ("ttcr", "tt_crit"), ("gn", "gamma_n"),

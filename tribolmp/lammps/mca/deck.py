@@ -1,4 +1,6 @@
-"""The ``-var`` values of ``lammps_inputs/mca_friction.in`` (LAMMPS ``units nano``), from SI parameters.
+"""The ``-var`` values of ``lammps_inputs/mca_friction.in``.
+
+LAMMPS ``units nano``, computed from SI parameters.
 
 Every conversion goes through :mod:`tribolmp.units`.
 """
@@ -45,7 +47,8 @@ def deck_variables(
     fn = to_lammps(params.pressure, "pressure") * area  # LAMMPS force (pressure x area)
     d = to_lammps(params.automaton_diameter, "length")
     every = steps_of(params.print_interval, dt_s)
-    # restarts on whole averaging windows of friction.csv, so that a resumed run repeats them exactly
+    # restarts on whole averaging windows of friction.csv, so that a resumed
+    # run repeats them exactly
     restart_every = max(1, round(steps_of(params.restart_interval, dt_s) / every)) * every
     variables: dict[str, Any] = {
         "data": str(data),
@@ -75,7 +78,8 @@ def deck_variables(
         "sink_lo": f"{geom_info['sink_lo_nm']:.10g}",
         "sink_hi": f"{geom_info['sink_hi_nm']:.10g}",
         "sink_tau": f"{to_lammps(params.sink_tau, 'time'):.10g}",
-        # links may stretch to (1 + rupture strain) d; 2.2 d keeps them and their partners' neighbours visible
+        # links may stretch to (1 + rupture strain) d; 2.2 d keeps them and
+        # their partners' neighbours visible
         "comm_cut": f"{2.2 * d:.10g}",
         # SI value of one LAMMPS unit, for the SI columns of friction.csv
         "si_force": f"{from_lammps(1.0, 'force'):.10g}",

@@ -17,7 +17,8 @@ CAUSES = (
     ),
     (
         re.compile(
-            r"non-numeric atom|out of range atoms|\bnan\b.*(force|coord|position)|non-numeric (pressure|box)",
+            r"non-numeric atom|out of range "
+            r"atoms|\bnan\b.*(force|coord|position)|non-numeric (pressure|box)",
             re.IGNORECASE,
         ),
         "non-finite positions or forces (NaN)",

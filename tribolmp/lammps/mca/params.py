@@ -21,7 +21,10 @@ __all__ = ["PRESETS", "MCAParams", "params_from_scene", "preset_params"]
 
 
 def _scene_field(section: type, name: str, **meta: Any) -> Any:
-    """Return a dataclass field with the default and metadata of ``section.name`` (optionally changed)."""
+    """Return a dataclass field with the default and metadata of ``section.name``.
+
+    The default can be changed.
+    """
     f = {fl.name: fl for fl in dataclasses.fields(section)}[name]
     return dataclasses.field(default=f.default, metadata={**f.metadata, **meta})
 
@@ -37,7 +40,8 @@ class MCAParams:
 
     dim: int = _scene_field(Nanoscale, "dim")
     automaton_diameter: float = _scene_field(Nanoscale, "automaton_diameter")
-    # the choices are the law registry's, checked in __post_init__ (a registered law needs no other edit)
+    # the choices are the law registry's, checked in __post_init__ (a
+    # registered law needs no other edit)
     bond_style: str = _scene_field(Nanoscale, "bond_style", choices=None)
     sliding_velocity: float = _scene_field(Nanoscale, "sliding_velocity")
     pressure: float = _scene_field(Nanoscale, "pressure")
@@ -138,12 +142,15 @@ class MCAParams:
             )
         if self.body_texture in ("rotated", "polycrystalline") and self.dim == 3:
             raise ParameterError(
-                "body_texture", "aligned or auto in 3D (textured bodies are 2D only)", self.body_texture
+                "body_texture",
+                "aligned or auto in 3D (textured bodies are 2D only)",
+                self.body_texture,
             )
         if self.texture == "polycrystalline" and not (3 * d <= self.grain_size <= self.box_length):
             raise ParameterError(
                 "grain_size",
-                f"a value in [3 automaton diameters, box_length] ([{3 * d:g}, {self.box_length:g}] m)",
+                "a value in [3 automaton diameters, box_length] "
+                f"([{3 * d:g}, {self.box_length:g}] m)",
                 self.grain_size,
             )
         spec = self.material()  # validates the material and the law's own limits
@@ -152,13 +159,15 @@ class MCAParams:
             # half the Verlet limit of the lattice: contacts and damping need margin
             raise ParameterError(
                 "dt_factor",
-                f"a value <= {0.5 * coeff.dt_max_factor:.3g} (half the lattice's Verlet stability limit)",
+                f"a value <= {0.5 * coeff.dt_max_factor:.3g} "
+                "(half the lattice's Verlet stability limit)",
                 self.dt_factor,
             )
         if self.pressure >= coeff.flow_stress:
             raise ParameterError(
                 "pressure",
-                f"a value below the lattice's flow stress {coeff.flow_stress:g} Pa (it would crush the lattice)",
+                "a value below the lattice's flow stress "
+                f"{coeff.flow_stress:g} Pa (it would crush the lattice)",
                 self.pressure,
             )
         if self.duration < self.ramp_time:
@@ -248,7 +257,9 @@ def params_from_scene(scene) -> MCAParams:
         raise ParameterError("[nanoscale]", "a [nanoscale] section in the scene", None)
     mat = scene.material
     # Old names of renamed scene fields (e.g. roughness_rms, now [nanoscale].rms_height) still read.
-    scene_names = {f.name for f in dataclasses.fields(Nanoscale)} | set(getattr(Nanoscale, "__field_aliases__", {}))
+    scene_names = {f.name for f in dataclasses.fields(Nanoscale)} | set(
+        getattr(Nanoscale, "__field_aliases__", {})
+    )
     shared = scene_names & {f.name for f in dataclasses.fields(MCAParams)}
     shared.discard("preset")
     return preset_params(

@@ -9,7 +9,10 @@ __all__ = ["compute_rates_if_available"]
 
 
 def compute_rates_if_available(out: Path) -> dict | None:
-    """``tribolmp.analysis.rates.compute_rates(out)``, or None when the analysis is not installed."""
+    """``tribolmp.analysis.rates.compute_rates(out)``.
+
+    Or None when the analysis is not installed.
+    """
     if importlib.util.find_spec("tribolmp.analysis.rates") is None:
         return None
     from ...analysis.rates import compute_rates  # lazy: MDAnalysis is heavy

@@ -205,7 +205,10 @@ def _first_rows(rows: list[tuple[float, str]]) -> list[str]:
 
 
 def truncate_outputs(out: Path, step: int, dt_s: float) -> None:
-    """Cut ``friction.csv`` and ``traj.lammpstrj`` back to ``step`` (the resumed run writes the rest)."""
+    """Cut ``friction.csv`` and ``traj.lammpstrj`` back to ``step``.
+
+    The resumed run writes the rest.
+    """
     out = Path(out)
     csv = out / "friction.csv"
     if csv.exists():
