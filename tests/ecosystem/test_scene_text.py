@@ -17,7 +17,9 @@ youngs_modulus = 100e9
 
 def test_toml_text_gives_the_same_scene_as_the_mapping():
     from_text = parse_scene(TEXT, source="cell")
-    from_map = parse_scene({"scene": {"name": "from text"}, "material": {"youngs_modulus": 100e9}}, source="cell")
+    from_map = parse_scene(
+        {"scene": {"name": "from text"}, "material": {"youngs_modulus": 100e9}}, source="cell"
+    )
     assert from_text == from_map
     assert from_text.material.youngs_modulus == 100e9
 

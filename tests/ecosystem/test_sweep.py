@@ -65,7 +65,10 @@ figures = false
 
 
 def _measured_scene(tmp_path: Path) -> Path:
-    """Return a scene whose contact reads [roughness].surface_file: a good x3p, or a corrupt .npy for a failing point."""
+    """Return a scene whose contact reads [roughness].surface_file.
+
+    A good x3p, or a corrupt .npy for a failing point.
+    """
     from tribolmp.models.topography.measured import write_surface
 
     h = np.random.default_rng(5).normal(size=(16, 16)) * 0.2e-6
@@ -74,7 +77,8 @@ def _measured_scene(tmp_path: Path) -> Path:
     scene = tmp_path / "measured.toml"
     scene.write_text(
         '[geometry]\nprofile = "rough"\n'
-        '[roughness]\nsurface_file = "good.x3p"\npixel_size = 2e-6\nshort_cutoff_wavelength = 8e-6\nrealizations = 2\n'
+        '[roughness]\nsurface_file = "good.x3p"\npixel_size = '
+        '2e-6\nshort_cutoff_wavelength = 8e-6\nrealizations = 2\n'
         "[load]\nnormal_force = 10.0\npressures = [1e6, 1e7]\n"
         '[outputs]\nrequested = ["stiffness"]\nfigures = false\n'
     )
@@ -85,7 +89,9 @@ def test_vary_parsing_and_the_point_product():
     v = parse_vary("nanoscale.pressure=50e6,150e6,382e6")
     assert v == Vary("nanoscale", "pressure", (50e6, 150e6, 382e6))
     assert parse_vary("nanoscale.bond_style=mca,plastic").values == ("mca", "plastic")
-    pts = expand_points({"scene": {"seed": 3}}, [v, parse_vary("kinematics.sliding_velocity=1,5")], seeds=2)
+    pts = expand_points(
+        {"scene": {"seed": 3}}, [v, parse_vary("kinematics.sliding_velocity=1,5")], seeds=2
+    )
     assert len(pts) == 3 * 2 * 2
     assert {p["seed"] for p in pts} == {3, 4}
     assert len({p["id"] for p in pts}) == len(pts)
@@ -100,8 +106,23 @@ def test_vary_parsing_and_the_point_product():
 def test_sweep_on_two_workers_json_contract_failing_point_and_figures(tmp_path, capsys):
     scene = _measured_scene(tmp_path)
     out = tmp_path / "sw"
-    code = main(["sweep", str(scene), "--vary", "load.normal_force=5,10", "--vary", 'roughness.surface_file="good.x3p","bad.npy"',
-                 "--workers", "2", "--out", str(out), "--json", "--map", "contact.surface_rms_m"])
+    code = main(
+        [
+            "sweep",
+            str(scene),
+            "--vary",
+            "load.normal_force=5,10",
+            "--vary",
+            'roughness.surface_file="good.x3p","bad.npy"',
+            "--workers",
+            "2",
+            "--out",
+            str(out),
+            "--json",
+            "--map",
+            "contact.surface_rms_m",
+        ]
+    )
     captured = capsys.readouterr()
     assert code == 3, captured.err  # some points failed: exit 3, the rest are in the table
     res = json.loads(captured.out)
@@ -130,10 +151,26 @@ def test_sweep_of_a_rates_given_scene_with_seeds_gives_errors_and_mu_figure(tmp_
     scene = tmp_path / "rates.toml"
     scene.write_text(RATES_SCENE)
     out = tmp_path / "sw"
-    # The tribospectroscopy frequency is read by that stage only: the points of one force and seed share
-    # their topography, contact and macroscale stages.
-    code = main(["sweep", str(scene), "--vary", "load.normal_force=5,10", "--vary", "tribospectroscopy.frequency=65e3,130e3",
-                 "--seeds", "2", "--workers", "2", "--out", str(out), "--json", "--quiet"])
+    # The tribospectroscopy frequency is read by that stage only: the points of
+    # one force and seed share their topography, contact and macroscale stages.
+    code = main(
+        [
+            "sweep",
+            str(scene),
+            "--vary",
+            "load.normal_force=5,10",
+            "--vary",
+            "tribospectroscopy.frequency=65e3,130e3",
+            "--seeds",
+            "2",
+            "--workers",
+            "2",
+            "--out",
+            str(out),
+            "--json",
+            "--quiet",
+        ]
+    )
     captured = capsys.readouterr()
     assert code == 0, captured.err
     res = json.loads(captured.out)
@@ -145,28 +182,47 @@ def test_sweep_of_a_rates_given_scene_with_seeds_gives_errors_and_mu_figure(tmp_
         assert s["mean"]["macroscale.mu"] == pytest.approx(0.16)  # given in [rates]
         assert s["sem"]["topography.rq"] > 0  # two seeds, two surfaces: a measured spread
     assert Path(res["figures"]["mu_vs_pressure"]).exists()
-    # Shared stages are computed once: across the 8 points' reports, every stage key that appears was
-    # "computed" by exactly one point, the others that need it report it "cached" (two workers, concurrent).
+    # Shared stages are computed once: across the 8 points' reports, every
+    # stage key that appears was "computed" by exactly one point, the others
+    # that need it report it "cached" (two workers, concurrent).
     computed: dict[str, int] = {}
     users: dict[str, int] = {}
     for p in res["points"]:
-        rep = json.loads((out / "points" / point_id(p["vary"], p["seed"]) / "report.json").read_text())
+        rep = json.loads(
+            (out / "points" / point_id(p["vary"], p["seed"]) / "report.json").read_text()
+        )
         for name, d in rep["stage_details"].items():
             if d["status"] in ("computed", "cached"):
                 computed.setdefault(f"{name}-{d['key']}", 0)
                 computed[f"{name}-{d['key']}"] += d["status"] == "computed"
                 users[f"{name}-{d['key']}"] = users.get(f"{name}-{d['key']}", 0) + 1
     assert computed and all(n == 1 for n in computed.values()), computed
-    assert max(users.values()) > 1, users  # the sweep did share stages (else the check above is empty)
+    assert max(users.values()) > 1, (
+        users
+    )  # the sweep did share stages (else the check above is empty)
 
 
 def test_a_killed_sweep_resumes_and_a_second_sweep_reuses_shared_points(tmp_path):
     scene = tmp_path / "rates.toml"
     scene.write_text(RATES_SCENE)
     out = tmp_path / "sw"
-    cmd = [sys.executable, "-m", "tribolmp", "sweep", str(scene), "--vary", "kinematics.sliding_velocity=0.01,0.02,0.03",
-           "--workers", "1", "--out", str(out), "--no-figures"]
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    cmd = [
+        sys.executable,
+        "-m",
+        "tribolmp",
+        "sweep",
+        str(scene),
+        "--vary",
+        "kinematics.sliding_velocity=0.01,0.02,0.03",
+        "--workers",
+        "1",
+        "--out",
+        str(out),
+        "--no-figures",
+    ]
+    proc = subprocess.Popen(
+        cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True
+    )
     deadline = time.time() + 240
     try:
         while time.time() < deadline and not list((out / "points").glob("*/point.json")):
@@ -187,13 +243,41 @@ def test_a_killed_sweep_resumes_and_a_second_sweep_reuses_shared_points(tmp_path
         assert (out / "points" / pid / "point.json").stat().st_mtime_ns == ns
 
     # A second sweep sharing the cache and one velocity: that point's stages come from the cache.
-    res2 = subprocess.run([sys.executable, "-m", "tribolmp", "sweep", str(scene), "--vary", "kinematics.sliding_velocity=0.02,0.05",
-                           "--workers", "1", "--out", str(tmp_path / "sw2"), "--cache-dir", str(out / "cache"), "--no-figures",
-                           "--json", "--quiet"], capture_output=True, text=True, timeout=300)
+    res2 = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "tribolmp",
+            "sweep",
+            str(scene),
+            "--vary",
+            "kinematics.sliding_velocity=0.02,0.05",
+            "--workers",
+            "1",
+            "--out",
+            str(tmp_path / "sw2"),
+            "--cache-dir",
+            str(out / "cache"),
+            "--no-figures",
+            "--json",
+            "--quiet",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert res2.returncode == 0, res2.stderr
     for p in json.loads(res2.stdout)["points"]:
-        rep = json.loads((tmp_path / "sw2" / "points" / point_id(p["vary"], p["seed"]) / "report.json").read_text())
-        statuses = {n: d["status"] for n, d in rep["stage_details"].items() if d["status"] in ("computed", "cached")}
+        rep = json.loads(
+            (
+                tmp_path / "sw2" / "points" / point_id(p["vary"], p["seed"]) / "report.json"
+            ).read_text()
+        )
+        statuses = {
+            n: d["status"]
+            for n, d in rep["stage_details"].items()
+            if d["status"] in ("computed", "cached")
+        }
         shared = p["vary"]["kinematics.sliding_velocity"] == 0.02
         assert set(statuses.values()) == ({"cached"} if shared else {"computed"}), statuses
 
@@ -203,10 +287,12 @@ def _one() -> int:
 
 
 def test_local_cluster_listens_on_loopback_only_and_serves_resource_tasks():
-    """No network: the scheduler, the workers and their HTTP endpoints bind 127.0.0.1 (free ports, not a fixed 8787).
+    """No network: the scheduler, the workers and their HTTP endpoints bind 127.0.0.1.
 
-    A task that reserves resources (--resources MPI=2, for [nanoscale].ranks = 2) runs on the local workers
-    (they are given those resources; without them such a task would wait forever).
+    On free ports, not a fixed 8787.
+
+    A task that reserves resources (--resources MPI=2, for [nanoscale].ranks = 2) runs on the local
+    workers (they are given those resources; without them such a task would wait forever).
     """
     import psutil
 

@@ -28,18 +28,36 @@ __all__ = ["COMMANDS", "OneLineParser", "emit_json", "float_list", "main", "seed
 
 #: command -> (module, one-line help); the module is imported only when its command runs.
 COMMANDS: dict[str, tuple[str, str]] = {
-    "info": ("tribolmp.cli.info", "versions of tribolmp, LAMMPS (packages), numpy, ase, MDAnalysis, MPI"),
+    "info": (
+        "tribolmp.cli.info",
+        "versions of tribolmp, LAMMPS (packages), numpy, ase, MDAnalysis, MPI",
+    ),
     "check": ("tribolmp.cli.check", "validate a scene file"),
-    "run": ("tribolmp.cli.run", "run a scene through the multiscale chain (default: the embedded scene)"),
-    "sweep": ("tribolmp.cli.sweep", "parameter campaign over a scene on Dask (LocalCluster or --scheduler)"),
+    "run": (
+        "tribolmp.cli.run",
+        "run a scene through the multiscale chain (default: the embedded scene)",
+    ),
+    "sweep": (
+        "tribolmp.cli.sweep",
+        "parameter campaign over a scene on Dask (LocalCluster or --scheduler)",
+    ),
     "bench": ("tribolmp.cli.bench", "gather the speed-against-error tables of every model"),
     "contact": ("tribolmp.cli.contact", "contact mechanics: MDR and half-space BEM"),
-    "lubrication": ("tribolmp.cli.lubrication", "reduced lubrication forces and the Reynolds reference"),
-    "topography": ("tribolmp.cli.topography", "stochastic surface evolution (Eq. 23); measured topography files"),
+    "lubrication": (
+        "tribolmp.cli.lubrication",
+        "reduced lubrication forces and the Reynolds reference",
+    ),
+    "topography": (
+        "tribolmp.cli.topography",
+        "stochastic surface evolution (Eq. 23); measured topography files",
+    ),
     "tribospec": ("tribolmp.cli.tribospec", "tribospectroscopy: simulate and fit F(amplitude)"),
     "macro": ("tribolmp.cli.macro", "rigid body on contact springs: stick-slip and oscillation"),
     "mca": ("tribolmp.cli.mca", "movable cellular automata friction on LAMMPS"),
-    "analysis": ("tribolmp.cli.analysis", "measurements on MCA outputs (Eq. 23 fit of a surface profile)"),
+    "analysis": (
+        "tribolmp.cli.analysis",
+        "measurements on MCA outputs (Eq. 23 fit of a surface profile)",
+    ),
 }
 
 
@@ -54,7 +72,9 @@ def build_parser(command: str | None = None) -> OneLineParser:
     """Build the top-level parser; configure only ``command``'s subparser."""
     from .. import __version__
 
-    parser = OneLineParser(prog="tribolmp", description="Multiscale simulation of friction, lubrication and wear.")
+    parser = OneLineParser(
+        prog="tribolmp", description="Multiscale simulation of friction, lubrication and wear."
+    )
     parser.add_argument("--version", action="version", version=f"tribolmp {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=OneLineParser)
     for name, (module, help_) in COMMANDS.items():
@@ -107,7 +127,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"tribolmp {args.command}: {exc}", file=sys.stderr)
         return EXIT_RUN
     except KeyboardInterrupt:
-        print(f"tribolmp {args.command}: interrupted; finished results and checkpoints are kept", file=sys.stderr)
+        print(
+            f"tribolmp {args.command}: interrupted; finished results and checkpoints are kept",
+            file=sys.stderr,
+        )
         return 130
     except OSError as exc:
         # A file system failure while running (disk full, a folder made read-only meanwhile):
@@ -125,7 +148,10 @@ def emit_json(obj: Any, stream=None) -> None:
 
 
 def seed_type(text: str) -> int:
-    """Parse a random seed, an integer >= 0 (argparse type; numpy's SeedSequence refuses negatives)."""
+    """Parse a random seed, an integer >= 0 (argparse type).
+
+    Numpy's SeedSequence refuses negatives.
+    """
     try:
         value = int(text)
     except ValueError:
@@ -140,7 +166,9 @@ def float_list(text: str) -> list[float]:
     try:
         values = [float(t) for t in text.split(",") if t.strip()]
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected comma-separated numbers, got {text!r}") from None
+        raise argparse.ArgumentTypeError(
+            f"expected comma-separated numbers, got {text!r}"
+        ) from None
     if not values or not all(math.isfinite(v) for v in values):
         raise argparse.ArgumentTypeError(f"expected comma-separated finite numbers, got {text!r}")
     return values

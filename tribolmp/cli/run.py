@@ -17,8 +17,15 @@ def configure(parser) -> None:
     """Add arguments (the ``--force`` choices are the registry's stage names)."""
     from ..chain.registry import STAGES
 
-    parser.add_argument("scene", nargs="?", default=None, help="TOML scene file (default: the embedded steel-steel scene)")
-    parser.add_argument("--out", default="tribolmp-run", help="output folder (default: ./tribolmp-run)")
+    parser.add_argument(
+        "scene",
+        nargs="?",
+        default=None,
+        help="TOML scene file (default: the embedded steel-steel scene)",
+    )
+    parser.add_argument(
+        "--out", default="tribolmp-run", help="output folder (default: ./tribolmp-run)"
+    )
     parser.add_argument(
         "--force",
         nargs="?",
@@ -28,11 +35,17 @@ def configure(parser) -> None:
         metavar="STAGE",
         help="recompute STAGE (repeatable) or, without a name, every stage, ignoring the cache",
     )
-    parser.add_argument("--cache-dir", default=None, help="share a stage cache between runs (default: OUT/cache)")
-    parser.add_argument("--plan", action="store_true", help="print the plan (what would run and why) and exit")
+    parser.add_argument(
+        "--cache-dir", default=None, help="share a stage cache between runs (default: OUT/cache)"
+    )
+    parser.add_argument(
+        "--plan", action="store_true", help="print the plan (what would run and why) and exit"
+    )
     parser.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     parser.add_argument("--quiet", action="store_true", help="no progress output")
-    parser.add_argument("--json", action="store_true", help="print report.json's stages list as JSON on stdout")
+    parser.add_argument(
+        "--json", action="store_true", help="print report.json's stages list as JSON on stdout"
+    )
 
 
 def _terminate_as_interrupt(signum, frame):  # pragma: no cover - exercised by a subprocess test
@@ -93,7 +106,8 @@ def summary_text(chain) -> str:
     computed = [e.name for e in chain.entries.values() if e.status == "computed"]
     cached = [e.name for e in chain.entries.values() if e.status == "cached"]
     lines = [
-        f"{chain.scene.scene.name}: {len(computed)} stage(s) computed ({', '.join(computed) or 'none'}), "
+        f"{chain.scene.scene.name}: {len(computed)} stage(s) "
+        f"computed ({', '.join(computed) or 'none'}), "
         f"{len(cached)} from the cache ({', '.join(cached) or 'none'}) in {chain.wall_time_s:.1f} s"
     ]
     lines += [f"  skipped {e.name}: {e.reason}" for e in chain.entries.values() if not e.ran]
@@ -101,7 +115,10 @@ def summary_text(chain) -> str:
 
 
 def stage_warnings(chain) -> list[str]:
-    """Return the warnings a stage recorded (e.g. the nanoscale 'not steady'), prefixed by the stage name."""
+    """Return the warnings a stage recorded.
+
+    For example the nanoscale stage's 'not steady'; each is prefixed by the stage name.
+    """
     out = []
     for e in chain.entries.values():
         if e.cached is None:
@@ -109,6 +126,9 @@ def stage_warnings(chain) -> list[str]:
         values = e.cached.values
         warns = list(values.get("warnings") or e.cached.record.get("warnings") or [])
         if e.name == "nanoscale" and values.get("mu_steady") is False:
-            warns.insert(0, "friction coefficient is NOT steady: mu is the mean of the second half of the run")
+            warns.insert(
+                0,
+                "friction coefficient is NOT steady: mu is the mean of the second half of the run",
+            )
         out += [f"{e.name}: {w}" for w in warns]
     return out

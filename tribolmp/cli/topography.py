@@ -28,37 +28,92 @@ DEFAULT_DX_NOISE_2D, DEFAULT_DZ_2D = 2.5e-28, 5.6e-28
 
 def configure(parser) -> None:
     """Add the ``evolve`` subcommand."""
-    sub = parser.add_subparsers(dest="action", metavar="ACTION", parser_class=type(parser), required=True)
-    p = sub.add_parser("evolve", help="evolve a periodic profile/surface and print its PSD against theory")
+    sub = parser.add_subparsers(
+        dest="action", metavar="ACTION", parser_class=type(parser), required=True
+    )
+    p = sub.add_parser(
+        "evolve", help="evolve a periodic profile/surface and print its PSD against theory"
+    )
     p.add_argument("--dim", type=int, default=1, help="1 (profile) or 2 (surface)")
     p.add_argument("--n", type=int, default=1024, help="grid points per side (even, >= 4)")
     p.add_argument("--dx", type=float, default=10e-9, help="grid spacing (m)")
     p.add_argument("--d0", type=float, default=1e-12, help="surface diffusion D0 (m^2/s)")
-    p.add_argument("--dx-noise", type=float, default=None,
-                   help="flux-noise intensity Dx (m^3/s 1D, m^4/s 2D; default 2.5e-20 m^3/s in 1D, 2.5e-28 m^4/s in 2D)")
-    p.add_argument("--dz", type=float, default=None,
-                   help="transfer-noise intensity Dz (m^3/s 1D, m^4/s 2D; default 5.6e-20 m^3/s in 1D, 5.6e-28 m^4/s in 2D)")
+    p.add_argument(
+        "--dx-noise",
+        type=float,
+        default=None,
+        help="flux-noise intensity Dx (m^3/s 1D, m^4/s 2D; "
+             "default 2.5e-20 m^3/s in 1D, 2.5e-28 m^4/s in 2D)",
+    )
+    p.add_argument(
+        "--dz",
+        type=float,
+        default=None,
+        help="transfer-noise intensity Dz (m^3/s 1D, m^4/s 2D; "
+             "default 5.6e-20 m^3/s in 1D, 5.6e-28 m^4/s in 2D)",
+    )
     p.add_argument("--mu", type=float, default=10.0, help="wear rate constant (1/s)")
     p.add_argument("--l", type=float, default=50e-9, help="step length of the flux noise (m)")
-    p.add_argument("--correlation-length", type=float, default=0.0, help="noise correlation length (m); 0 = delta")
+    p.add_argument(
+        "--correlation-length",
+        type=float,
+        default=0.0,
+        help="noise correlation length (m); 0 = delta",
+    )
     p.add_argument("--dt", type=float, default=1e-2, help="time step (s)")
     p.add_argument("--steps", type=int, default=100, help="number of steps")
-    p.add_argument("--replicas", type=int, default=1, help="independent surfaces averaged in the PSD")
-    p.add_argument("--seed", type=seed_type, default=None, help="random seed (default: fresh entropy)")
-    p.add_argument("--scheme", default="exact", help="exact (OU per Fourier mode) or euler (lattice reference)")
-    p.add_argument("--operator", default="spectral", help="exact scheme: spectral (k^2) or lattice operator")
+    p.add_argument(
+        "--replicas", type=int, default=1, help="independent surfaces averaged in the PSD"
+    )
+    p.add_argument(
+        "--seed", type=seed_type, default=None, help="random seed (default: fresh entropy)"
+    )
+    p.add_argument(
+        "--scheme", default="exact", help="exact (OU per Fourier mode) or euler (lattice reference)"
+    )
+    p.add_argument(
+        "--operator", default="spectral", help="exact scheme: spectral (k^2) or lattice operator"
+    )
     p.add_argument("--precision", default="double", help="exact scheme: double or single")
-    p.add_argument("--out", default=None, help="folder for height maps (.npy + .json, .asc/.xyz) and psd.csv")
+    p.add_argument(
+        "--out", default=None, help="folder for height maps (.npy + .json, .asc/.xyz) and psd.csv"
+    )
     p.add_argument("--json", action="store_true", help="print the result as JSON")
-    i = sub.add_parser("info", help="format, size, rms height/gradient, Hurst exponent and PSD of a measured topography file")
-    i.add_argument("file", help="topography file: x3p, sur, opd(x), datx, gwy, MetroPro, plu(x), vk, zon, di/spm, ibw, nc, ... "
-                   "(SurfaceTopography), or tribolmp .npy/.asc/.xyz")
+    i = sub.add_parser(
+        "info",
+        help="format, size, rms height/gradient, Hurst "
+             "exponent and PSD of a measured topography file",
+    )
+    i.add_argument(
+        "file",
+        help="topography file: x3p, sur, opd(x), datx, gwy, "
+             "MetroPro, plu(x), vk, zon, di/spm, ibw, nc, ... "
+        "(SurfaceTopography), or tribolmp .npy/.asc/.xyz",
+    )
     i.add_argument("--pixel-size", type=float, default=None, dest="pixel_size",
                    help="grid spacing (m); overrides the file's metadata only when given")
-    i.add_argument("--unit", default=None, help="length unit of the file's numbers (m, mm, um, nm, ...) for files without one")
-    i.add_argument("--detrend", default="none", choices=("none", "mean", "plane", "curvature"), help="detrending before the statistics")
-    i.add_argument("--channel", type=int, default=None, help="data channel of a multi-channel file (default: the file's default)")
-    i.add_argument("--out", default=".", help="folder for <stem>_topography.png and <stem>_psd.csv (default: .)")
+    i.add_argument(
+        "--unit",
+        default=None,
+        help="length unit of the file's numbers (m, mm, um, nm, ...) for files without one",
+    )
+    i.add_argument(
+        "--detrend",
+        default="none",
+        choices=("none", "mean", "plane", "curvature"),
+        help="detrending before the statistics",
+    )
+    i.add_argument(
+        "--channel",
+        type=int,
+        default=None,
+        help="data channel of a multi-channel file (default: the file's default)",
+    )
+    i.add_argument(
+        "--out",
+        default=".",
+        help="folder for <stem>_topography.png and <stem>_psd.csv (default: .)",
+    )
     i.add_argument("--no-figure", action="store_true", help="skip the PNG")
     i.add_argument("--json", action="store_true", help="print the result as JSON")
 
@@ -79,20 +134,33 @@ def _info(args) -> int:
     out = Path(args.out)
     stem = Path(args.file).stem
     info = topography_info(
-        args.file, pixel_size=args.pixel_size, unit=args.unit, detrend=args.detrend, channel=args.channel,
-        png=None if args.no_figure else out / f"{stem}_topography.png", psd_csv=out / f"{stem}_psd.csv",
+        args.file,
+        pixel_size=args.pixel_size,
+        unit=args.unit,
+        detrend=args.detrend,
+        channel=args.channel,
+        png=None if args.no_figure else out / f"{stem}_topography.png",
+        psd_csv=out / f"{stem}_psd.csv",
     )
     if args.json:
         emit_json(info)
         return 0
     nx, ny = info["grid"]
-    print(f"{info['file']}: {info['format']} {info['kind']}, grid {nx} x {ny}, size {info['size_m'][0]:.4g} x "
-          f"{info['size_m'][1]:.4g} m, pixel {info['pixel_size_m'] if info['pixel_size_m'] is None else format(info['pixel_size_m'], '.4g')} m "
-          f"(units: {info['unit_source']})")
+    pixel = info["pixel_size_m"]
+    print(
+        f"{info['file']}: {info['format']} {info['kind']}, "
+        f"grid {nx} x {ny}, size {info['size_m'][0]:.4g} x "
+        f"{info['size_m'][1]:.4g} m, pixel "
+        f"{pixel if pixel is None else format(pixel, '.4g')} m "
+        f"(units: {info['unit_source']})"
+    )
     grad = "n/a" if info["rms_gradient"] is None else f"{info['rms_gradient']:.4g}"
     hurst = "n/a" if info["hurst"] is None else f"{info['hurst']:.3g}"
-    print(f"rms height {info['rms_height_m']:.4g} m; rms {'gradient' if ny > 1 else 'slope'} {grad}; Hurst {hurst}; "
-          f"missing points {info['missing_points']}; detrend {info['detrend']}")
+    print(
+        f"rms height {info['rms_height_m']:.4g} m; rms "
+        f"{'gradient' if ny > 1 else 'slope'} {grad}; Hurst {hurst}; "
+        f"missing points {info['missing_points']}; detrend {info['detrend']}"
+    )
     for note in info["notes"]:
         print(f"note: {note}")
     for key, path in info["files"].items():
@@ -108,10 +176,15 @@ def _evolve(args) -> int:
     from ..models.topography import TopographyParams, evolve, save_ascii_grid, save_height_map
     from . import emit_json
 
-    # 2D intensities are per area (m^4/s): the 1D defaults times a 10 nm slab (the default pixel), so the
-    # per-pixel noise variance, and with it Rq, match the 1D default instead of being ~10^4 larger (issue 16).
+    # 2D intensities are per area (m^4/s): the 1D defaults times a 10 nm
+    # slab (the default pixel), so the per-pixel noise variance, and with it
+    # Rq, match the 1D default instead of being ~10^4 larger (issue 16).
     dim2 = args.dim == 2
-    dx_noise = args.dx_noise if args.dx_noise is not None else (DEFAULT_DX_NOISE_2D if dim2 else DEFAULT_DX_NOISE_1D)
+    dx_noise = (
+        args.dx_noise
+        if args.dx_noise is not None
+        else (DEFAULT_DX_NOISE_2D if dim2 else DEFAULT_DX_NOISE_1D)
+    )
     dz = args.dz if args.dz is not None else (DEFAULT_DZ_2D if dim2 else DEFAULT_DZ_1D)
     params = TopographyParams(
         dim=args.dim, n=args.n, dx=args.dx, d0=args.d0, dx_noise=dx_noise, dz=dz, mu=args.mu,
@@ -136,25 +209,54 @@ def _evolve(args) -> int:
         ascii_name = "height_map.asc" if params.dim == 2 else "height_map.xyz"
         files["ascii"] = str(save_ascii_grid(out / ascii_name, h0, params.pixel_size))
         if (out / "height_map.nc").exists():
-            files["netcdf"] = str(out / "height_map.nc")  # written by save_height_map through SurfaceTopography
+            files["netcdf"] = str(
+                out / "height_map.nc"
+            )  # written by save_height_map through SurfaceTopography
         if params.dim == 2 and "netcdf" in files:
             from ..models.topography.measured import write_surface
 
             files["x3p"] = str(write_surface(out / "height_map.x3p", h0, params.pixel_size))
         table = np.column_stack([res.k, res.psd, res.psd_theory])
-        np.savetxt(out / "psd.csv", table, delimiter=",", header="k_1_per_m,psd,psd_theory", comments="")
+        np.savetxt(
+            out / "psd.csv", table, delimiter=",", header="k_1_per_m,psd,psd_theory", comments=""
+        )
         files["psd_csv"] = str(out / "psd.csv")
     if args.json:
-        emit_json({
-            "k": res.k, "psd": res.psd, "psd_theory": res.psd_theory, "psd_stationary": res.psd_stationary,
-            "time_s": res.time_s, "steps_per_s": res.steps_per_s, "steps": params.steps, "dt_s": params.dt,
-            "t_s": res.t_s, "dim": params.dim, "n": params.grid_points, "dx_m": params.pixel_size, "replicas": res.replicas,
-            "scheme": res.scheme, "operator": res.operator, "rq_m": res.rq, "rq_theory_m": res.rq_theory,
-            "mean_m": res.mean, "k1_1_per_m": res.k1, "k2_1_per_m": res.k2, "roughness": res.roughness,
-            "files": files, "status": res.status, "message": res.message,
-            "units": {"k": "1/m", "psd": f"m^{params.dim + 2}", "psd_theory": f"m^{params.dim + 2}",
-                      "time_s": "s", "steps_per_s": "1/s"},
-        })
+        emit_json(
+            {
+                "k": res.k,
+                "psd": res.psd,
+                "psd_theory": res.psd_theory,
+                "psd_stationary": res.psd_stationary,
+                "time_s": res.time_s,
+                "steps_per_s": res.steps_per_s,
+                "steps": params.steps,
+                "dt_s": params.dt,
+                "t_s": res.t_s,
+                "dim": params.dim,
+                "n": params.grid_points,
+                "dx_m": params.pixel_size,
+                "replicas": res.replicas,
+                "scheme": res.scheme,
+                "operator": res.operator,
+                "rq_m": res.rq,
+                "rq_theory_m": res.rq_theory,
+                "mean_m": res.mean,
+                "k1_1_per_m": res.k1,
+                "k2_1_per_m": res.k2,
+                "roughness": res.roughness,
+                "files": files,
+                "status": res.status,
+                "message": res.message,
+                "units": {
+                    "k": "1/m",
+                    "psd": f"m^{params.dim + 2}",
+                    "psd_theory": f"m^{params.dim + 2}",
+                    "time_s": "s",
+                    "steps_per_s": "1/s",
+                },
+            }
+        )
     else:
         print(res.message)
         print(f"Rq = {res.rq:.4g} m (theory {res.rq_theory:.4g} m); {res.steps_per_s:.4g} steps/s; "
