@@ -45,15 +45,28 @@ def main(argv=None) -> int:
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="small sizes only")
-    ap.add_argument("--out", default=str(Path(__file__).parent / "results" / "analysis_throughput.csv"))
+    ap.add_argument(
+        "--out", default=str(Path(__file__).parent / "results" / "analysis_throughput.csv")
+    )
     args = ap.parse_args(argv)
     rows = []
-    header = ("walkers", "atoms", "frames", "stock_read_s", "mca_read_s", "speedup", "diffusion_s", "D_rel_err")
+    header = (
+        "walkers",
+        "atoms",
+        "frames",
+        "stock_read_s",
+        "mca_read_s",
+        "speedup",
+        "diffusion_s",
+        "D_rel_err",
+    )
     print(" ".join(f"{h:>13s}" for h in header))
     with tempfile.TemporaryDirectory() as tmp:
         for n_walkers, n_frames in QUICK if args.quick else SIZES:
             d = Path(tmp) / f"w{n_walkers}"
-            exp = make_walkers(d, np.random.default_rng(n_walkers), n_walkers=n_walkers, n_frames=n_frames)
+            exp = make_walkers(
+                d, np.random.default_rng(n_walkers), n_walkers=n_walkers, n_frames=n_frames
+            )
             meta = read_meta(d)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
@@ -73,7 +86,10 @@ def main(argv=None) -> int:
             err = r.diffusion_m2_s / exp["diffusion_m2_s"] - 1
             row = (n_walkers, u.atoms.n_atoms, n_frames, t_stock, t_mca, t_stock / t_mca, t_d, err)
             rows.append(row)
-            print(" ".join(f"{v:>13.4g}" if isinstance(v, float) else f"{v:>13d}" for v in row), flush=True)
+            print(
+                " ".join(f"{v:>13.4g}" if isinstance(v, float) else f"{v:>13d}" for v in row),
+                flush=True,
+            )
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     with out.open("w", newline="") as fh:

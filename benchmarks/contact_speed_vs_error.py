@@ -43,6 +43,12 @@ def _best_time(fun, repeat):
 
 
 def axisymmetric_table(quick: bool) -> list[dict]:
+    """Time MDR (by springs) and BEM (by grid) against the analytic axisymmetric references.
+
+    Hertz and cone for both; JKR for MDR only (the BEM is non-adhesive).  One row
+    per case and resolution: wall time (best of repeats) and the error against
+    :mod:`tribolmp.models.contact.reference`.
+    """
     from tribolmp.models.contact import AxisymmetricParams, solve
     from tribolmp.models.contact import reference as ref
 
@@ -56,23 +62,75 @@ def axisymmetric_table(quick: bool) -> list[dict]:
     }
     for case, (kw, F) in cases.items():
         for n in springs:
-            t, res = _best_time(lambda: solve(AxisymmetricParams(E_star=E, indentation=d, springs=n, **kw)), 3)
-            rows.append(dict(case=case, method="mdr", resolution=n, time_s=t, error=abs(res.force / F - 1), quantity="force"))
+            t, res = _best_time(
+                lambda: solve(AxisymmetricParams(E_star=E, indentation=d, springs=n, **kw)), 3
+            )
+            rows.append(
+                dict(
+                    case=case,
+                    method="mdr",
+                    resolution=n,
+                    time_s=t,
+                    error=abs(res.force / F - 1),
+                    quantity="force",
+                )
+            )
         for n in grids:
             # Load control at the reference force; error of the indentation (the BEM's output).
-            t, res = _best_time(lambda: solve(AxisymmetricParams(E_star=E, normal_force=F, grid_points=n, **kw), method="bem"), 1)
-            rows.append(dict(case=case, method="bem", resolution=n, time_s=t, error=abs(res.indentation / d - 1), quantity="indentation"))
+            t, res = _best_time(
+                lambda: solve(
+                    AxisymmetricParams(E_star=E, normal_force=F, grid_points=n, **kw), method="bem"
+                ),
+                1,
+            )
+            rows.append(
+                dict(
+                    case=case,
+                    method="bem",
+                    resolution=n,
+                    time_s=t,
+                    error=abs(res.indentation / d - 1),
+                    quantity="indentation",
+                )
+            )
     po = ref.jkr_pull_off_force_control(R, w)
     po_d = ref.jkr_pull_off_displacement_control(R, w)
     for n in springs:
-        t, res = _best_time(lambda: solve(AxisymmetricParams(profile="sphere", radius=R, E_star=E, indentation=d, work_of_adhesion=w, springs=n)), 3)
-        err = max(abs(res.pull_off_force / po - 1), abs(res.pull_off_force_displacement_control / po_d - 1))
-        rows.append(dict(case="jkr", method="mdr", resolution=n, time_s=t, error=err, quantity="pull-off (both controls)"))
+        t, res = _best_time(
+            lambda: solve(
+                AxisymmetricParams(
+                    profile="sphere",
+                    radius=R,
+                    E_star=E,
+                    indentation=d,
+                    work_of_adhesion=w,
+                    springs=n,
+                )
+            ),
+            3,
+        )
+        err = max(
+            abs(res.pull_off_force / po - 1),
+            abs(res.pull_off_force_displacement_control / po_d - 1),
+        )
+        rows.append(
+            dict(
+                case="jkr",
+                method="mdr",
+                resolution=n,
+                time_s=t,
+                error=err,
+                quantity="pull-off (both controls)",
+            )
+        )
     return rows
 
 
 def _references():
-    """Load the shipped rough-contact references (tests/data/contact_references.json) and helpers."""
+    """Load the shipped rough-contact references and helpers.
+
+    The references are tests/data/contact_references.json.
+    """
     import json
 
     root = Path(__file__).resolve().parents[1]
@@ -83,7 +141,10 @@ def _references():
 
 
 def _reference_k(cr, cls):
-    """Best periodic stiffness (finest grid of the resolution study, map 0) and the resolved mask."""
+    """Best periodic stiffness and the resolved mask.
+
+    The best stiffness is that of the finest grid of the resolution study (map 0).
+    """
     res = cls["resolution"]
     nf = max(int(n) for n in res)
     return np.array(res[str(nf)]["periodic"]["stiffness"]), cr.resolved_mask(cls), nf
@@ -123,10 +184,13 @@ def tamaas_table(quick: bool) -> list[dict]:
     tm.set_log_level(tm.LogLevel.error)
     cr, refs = _references()
     n = 256 if quick else 512
-    names = [k for k in ("H0.8-rolloff", "H0.5-selfaffine", "wavy+H0.8") if k in refs["classes"]][: 1 if quick else 3]
+    names = [k for k in ("H0.8-rolloff", "H0.5-selfaffine", "wavy+H0.8") if k in refs["classes"]][
+        : 1 if quick else 3
+    ]
     repeats = 1 if quick else 2
     rows = []
-    eps = 1e-3  # finite-difference step in pressure for tamaas's stiffness (O(eps) ~ 1e-3 relative error)
+    # finite-difference step in pressure for tamaas's stiffness (O(eps) ~ 1e-3 relative error)
+    eps = 1e-3
     for name in names:
         cls = refs["classes"][name]
         h, dx = cr.reference_surface(cls["recipe"], cls["recipe"]["seeds"][0], n)
@@ -145,30 +209,60 @@ def tamaas_table(quick: bool) -> list[dict]:
                 t_tm.append(t1)
                 t_tm2.append(t1 + t2)
             k_tm = eps * p * L2 / (g1 - g2)
-            ours2 = solve_bem(h, dx, cr.E_STAR, p * (1 + eps), periodic=True, tol=1e-10, stiffness=False, p0=ours.p)
+            ours2 = solve_bem(
+                h,
+                dx,
+                cr.E_STAR,
+                p * (1 + eps),
+                periodic=True,
+                tol=1e-10,
+                stiffness=False,
+                p0=ours.p,
+            )
             k_ours_fd = eps * p * L2 / (ours.mean_gap - ours2.mean_gap)
-            rows.append(dict(
-                surface=name, grid=n, reduced_pressure=cls["reduced_pressures"][j], area_fraction=ours.area_fraction,
-                ours_time_s=min(t_ours), ours_nit=ours.nit, ours_nit_stiffness=ours.nit_stiffness, tamaas_time_s=min(t_tm),
-                tamaas_time_for_stiffness_s=min(t_tm2), time_ratio_solve_incl_tangent=min(t_ours) / min(t_tm),
-                time_ratio_for_stiffness=min(t_ours) / min(t_tm2),
-                ours_stiffness=ours.stiffness, ours_fd_stiffness=k_ours_fd, tamaas_fd_stiffness=k_tm,
-                stiffness_rel_diff=ours.stiffness / k_tm - 1, fd_stiffness_rel_diff=k_ours_fd / k_tm - 1,
-                max_pressure_diff=float(np.max(np.abs(ours.p - p_tm)) / np.max(p_tm)),
-            ))
-            print(f"  tamaas {name} p/(E*h')={cls['reduced_pressures'][j]:g}: ours {min(t_ours):.2f} s vs tamaas {min(t_tm):.2f} s "
-                  f"(x2 for its stiffness), k diff {rows[-1]['stiffness_rel_diff']:+.2e}", flush=True)
+            rows.append(
+                dict(
+                    surface=name,
+                    grid=n,
+                    reduced_pressure=cls["reduced_pressures"][j],
+                    area_fraction=ours.area_fraction,
+                    ours_time_s=min(t_ours),
+                    ours_nit=ours.nit,
+                    ours_nit_stiffness=ours.nit_stiffness,
+                    tamaas_time_s=min(t_tm),
+                    tamaas_time_for_stiffness_s=min(t_tm2),
+                    time_ratio_solve_incl_tangent=min(t_ours) / min(t_tm),
+                    time_ratio_for_stiffness=min(t_ours) / min(t_tm2),
+                    ours_stiffness=ours.stiffness,
+                    ours_fd_stiffness=k_ours_fd,
+                    tamaas_fd_stiffness=k_tm,
+                    stiffness_rel_diff=ours.stiffness / k_tm - 1,
+                    fd_stiffness_rel_diff=k_ours_fd / k_tm - 1,
+                    max_pressure_diff=float(np.max(np.abs(ours.p - p_tm)) / np.max(p_tm)),
+                )
+            )
+            print(
+                f"  tamaas {name} p/(E*h')={cls['reduced_pressures'][j]:g}: "
+                f"ours {min(t_ours):.2f} s vs tamaas {min(t_tm):.2f} s "
+                f"(x2 for its stiffness), k diff {rows[-1]['stiffness_rel_diff']:+.2e}",
+                flush=True,
+            )
     return rows
 
 
 def rough_table(quick: bool) -> list[dict]:
-    """MDR (line length x realisations) and periodic BEM (grid) against the resolved references, one run."""
+    """MDR and periodic BEM against the resolved references, one run.
+
+    Resolutions: the MDR line length x realisations, the BEM grid.
+    """
     from tribolmp.models.contact.bem import solve_bem
     from tribolmp.models.contact.rough import mdr_profiles_from_heightmap, stiffness_vs_load
 
     cr, refs = _references()
     names = list(refs["classes"])[:2] if quick else list(refs["classes"])
-    grids = (128, 256) if quick else (128, 256, 512)  # > 2 K_S + 1 = 65 points: the band-limited surface unaliased
+    grids = (
+        (128, 256) if quick else (128, 256, 512)
+    )  # > 2 K_S + 1 = 65 points: the band-limited surface unaliased
     reals = (4, 16, 64) if quick else (4, 16, 64, 256)
     rows = []
     for name in names:
@@ -187,9 +281,19 @@ def rough_table(quick: bool) -> list[dict]:
                 t, res = _best_time(run, 3)
                 err = np.abs(res.stiffness / kr - 1)
                 for j in range(P.size):
-                    rows.append(dict(surface=name, method="mdr", mesh=n, realizations=R, reduced_pressure=pb[j],
-                                     rel_error=err[j], closed_fraction=res.closed_fraction[j], time_s=t / P.size,
-                                     reference_grid=nf))
+                    rows.append(
+                        dict(
+                            surface=name,
+                            method="mdr",
+                            mesh=n,
+                            realizations=R,
+                            reduced_pressure=pb[j],
+                            rel_error=err[j],
+                            closed_fraction=res.closed_fraction[j],
+                            time_s=t / P.size,
+                            reference_grid=nf,
+                        )
+                    )
         for n in grids:
             h, dx = cr.reference_surface(cls["recipe"], seed, n)
             p0 = None
@@ -198,9 +302,19 @@ def rough_table(quick: bool) -> list[dict]:
                 r = solve_bem(h, dx, cr.E_STAR, float(p), periodic=True, tol=1e-10, p0=p0)
                 t = time.perf_counter() - t0
                 p0 = r.p
-                rows.append(dict(surface=name, method="bem", mesh=n, realizations=0, reduced_pressure=pb[j],
-                                 rel_error=abs(r.stiffness / kr[j] - 1), closed_fraction=float("nan"), time_s=t,
-                                 reference_grid=nf))
+                rows.append(
+                    dict(
+                        surface=name,
+                        method="bem",
+                        mesh=n,
+                        realizations=0,
+                        reduced_pressure=pb[j],
+                        rel_error=abs(r.stiffness / kr[j] - 1),
+                        closed_fraction=float("nan"),
+                        time_s=t,
+                        reference_grid=nf,
+                    )
+                )
         print(f"  rough {name}: done", flush=True)
     return rows
 
@@ -243,7 +357,12 @@ def _plot(rows: list[dict], path: Path) -> None:
         for method, marker in (("mdr", "o-"), ("bem", "s--")):
             sel = [r for r in rows if r["case"] == case and r["method"] == method]
             if sel:
-                ax.loglog([r["time_s"] for r in sel], [max(r["error"], 1e-16) for r in sel], marker, label=f"{method} {case}")
+                ax.loglog(
+                    [r["time_s"] for r in sel],
+                    [max(r["error"], 1e-16) for r in sel],
+                    marker,
+                    label=f"{method} {case}",
+                )
     ax.set_xlabel("wall time (s)")
     ax.set_ylabel("relative error")
     ax.legend(fontsize=8)
@@ -270,8 +389,12 @@ def main(argv=None) -> int:
     """Run the benchmark; ``--quick`` for a small version."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="small sizes (seconds instead of minutes)")
-    ap.add_argument("--out", default=str(Path(__file__).resolve().parent / "results"), help="output folder")
-    ap.add_argument("--skip", default="", help="comma list of tables to skip: axisymmetric,tamaas,rough")
+    ap.add_argument(
+        "--out", default=str(Path(__file__).resolve().parent / "results"), help="output folder"
+    )
+    ap.add_argument(
+        "--skip", default="", help="comma list of tables to skip: axisymmetric,tamaas,rough"
+    )
     args = ap.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -289,7 +412,11 @@ def main(argv=None) -> int:
     if "rough" not in skip:
         rows = rough_table(args.quick)
         summary = _rough_summary(rows)
-        print_table("Rough surfaces (resolved references): worst error and time per (method, mesh, realisations)", summary)
+        print_table(
+            "Rough surfaces (resolved references): worst "
+            "error and time per (method, mesh, realisations)",
+            summary,
+        )
         write_csv(out / f"contact_rough_speed_vs_error{suffix}.csv", rows)
         write_csv(out / f"contact_rough_speed_vs_error_summary{suffix}.csv", summary)
         _plot_rough(rows, out / f"contact_rough_speed_vs_error{suffix}.png")

@@ -1,4 +1,6 @@
-"""Speed against error of the reduced lubrication models, against the Reynolds and Stokes references.
+"""Speed against error of the reduced lubrication models.
+
+Errors are measured against the Reynolds and Stokes references.
 
 For h/R from 1e-4 to 0.3 every reduced squeeze model (damper, Cox-Brenner,
 Brenner series, the Eq. 13 pair law by ring quadrature) and the numerical
@@ -64,7 +66,9 @@ def main(argv=None) -> int:
     """Run the benchmark, print the table and write the CSV."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="small grids and fewer gaps")
-    ap.add_argument("--out", default=str(Path(__file__).parent / "results" / "lubrication_speed_vs_error.csv"))
+    ap.add_argument(
+        "--out", default=str(Path(__file__).parent / "results" / "lubrication_speed_vs_error.csv")
+    )
     args = ap.parse_args(argv)
 
     from tribolmp.models.lubrication import pairlaw
@@ -99,7 +103,11 @@ def main(argv=None) -> int:
     for eps in eps_list:
         h = eps * R
         f_stokes = ref.brenner_force(R, eta, h, V)
-        rey_ref = solve(ReynoldsParams(radius=R, gap=h, velocity=V, viscosity=eta, cells=ref_cells, domain=1000.0))
+        rey_ref = solve(
+            ReynoldsParams(
+                radius=R, gap=h, velocity=V, viscosity=eta, cells=ref_cells, domain=1000.0
+            )
+        )
         f_rey = rey_ref.force
         t, f = _time(lambda: squeeze_damper_force(R, eta, h, V))
         row("damper", eps, "-", t, f, f_rey, f_stokes)
@@ -111,10 +119,16 @@ def main(argv=None) -> int:
         t, f = _time(lambda: ref.brenner_force(R, eta, h, V))
         row("brenner", eps, "-", t, f, f_rey, f_stokes)
         for rf in refines:
-            t, res = _time(lambda: pairlaw.sphere_plane_pair_force(R, eta, h, V, refine=rf), min_time=0.0, repeats=1)
+            t, res = _time(
+                lambda: pairlaw.sphere_plane_pair_force(R, eta, h, V, refine=rf),
+                min_time=0.0,
+                repeats=1,
+            )
             row("pairlaw", eps, f"refine={rf} rings={res.rings}", t, res.force, f_rey, f_stokes)
         for cells in cells_axi:
-            p = ReynoldsParams(radius=R, gap=h, velocity=V, viscosity=eta, cells=cells, domain=1000.0)
+            p = ReynoldsParams(
+                radius=R, gap=h, velocity=V, viscosity=eta, cells=cells, domain=1000.0
+            )
             t, res = _time(lambda: solve(p), min_time=0.02)
             row("reynolds-axisymmetric", eps, f"cells={cells}", t, res.force, f_rey, f_stokes)
         for cells in cells_xy:
@@ -126,11 +140,28 @@ def main(argv=None) -> int:
     pl_rows = []
     for n in ([0.4, 1.5] if args.quick else [1 / 3 + 0.01, 0.4, 0.7, 1.5, 3.0]):
         for cells in cells_axi:
-            p = ReynoldsParams(radius=R, gap=1e-6, velocity=V, viscosity=eta, power_law_index=n, cells=cells, domain=100.0)
+            p = ReynoldsParams(
+                radius=R,
+                gap=1e-6,
+                velocity=V,
+                viscosity=eta,
+                power_law_index=n,
+                cells=cells,
+                domain=100.0,
+            )
             t, res = _time(lambda: solve(p), min_time=0.0, repeats=1)
             exact = ref.power_law_squeeze_force(R, eta, n, 1e-6, V, r_max=res.r_max)
             t_cf, _ = _time(lambda: ref.power_law_squeeze_force(R, eta, n, 1e-6, V))
-            pl_rows.append(dict(n=n, cells=cells, nit=res.nit, time_s=t, closed_form_time_s=t_cf, rel_error=res.force / exact - 1))
+            pl_rows.append(
+                dict(
+                    n=n,
+                    cells=cells,
+                    nit=res.nit,
+                    time_s=t,
+                    closed_form_time_s=t_cf,
+                    rel_error=res.force / exact - 1,
+                )
+            )
 
     # sliding: the log coefficient of the drag from the x-y Reynolds solver (Couette source),
     # on a fixed outer square L = 0.5 R, against GCB (8/15) and the seed's Eq. 12 (1/3)
@@ -140,14 +171,29 @@ def main(argv=None) -> int:
         drag, tt = {}, 0.0
         for eps in (1e-3, 1e-4):
             h = eps * R
-            p = ReynoldsParams(radius=R, gap=h, velocity=0.0, viscosity=eta, sliding_velocity=U, cells=cells,
-                               domain=L / math.sqrt(2 * R * h))
+            p = ReynoldsParams(
+                radius=R,
+                gap=h,
+                velocity=0.0,
+                viscosity=eta,
+                sliding_velocity=U,
+                cells=cells,
+                domain=L / math.sqrt(2 * R * h),
+            )
             t, res = _time(lambda: solve(p, method="xy"), min_time=0.0, repeats=1)
             drag[eps], tt = res.drag, tt + t
         slope = (drag[1e-4] - drag[1e-3]) / math.log(10) / (6 * math.pi * eta * R * U)
         t_gcb, _ = _time(lambda: float(ref.gcb_sliding_force(R, eta, 1e-6, U)))
-        sl_rows.append(dict(cells=cells, time_s=tt / 2, gcb_time_s=t_gcb, log_slope=slope,
-                            err_vs_gcb=slope / (8 / 15) - 1, err_couette_vs_reynolds=(1 / 3) / slope - 1))
+        sl_rows.append(
+            dict(
+                cells=cells,
+                time_s=tt / 2,
+                gcb_time_s=t_gcb,
+                log_slope=slope,
+                err_vs_gcb=slope / (8 / 15) - 1,
+                err_couette_vs_reynolds=(1 / 3) / slope - 1,
+            )
+        )
 
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -155,7 +201,10 @@ def main(argv=None) -> int:
     pl_out = out.with_name(out.stem + "_powerlaw.csv")
     write_csv(pl_out, pl_rows)
 
-    print(f"{'model':<28}{'h/R':>9} {'resolution':<24}{'time (s)':>11}{'err vs Reynolds':>17}{'err vs Stokes':>15}")
+    print(
+        f"{'model':<28}{'h/R':>9} "
+        f"{'resolution':<24}{'time (s)':>11}{'err vs Reynolds':>17}{'err vs Stokes':>15}"
+    )
     for r in rows:
         print(
             f"{r['model']:<28}{r['h_over_R']:>9.1e} {r['resolution']:<24}{r['time_s']:>11.3e}"
@@ -166,18 +215,33 @@ def main(argv=None) -> int:
     for eps in eps_list:
         td = min(r["time_s"] for r in rows if r["model"] == "damper" and r["h_over_R"] == eps)
         for r in rows:
-            if r["h_over_R"] == eps and r["model"].startswith("reynolds") and abs(r["err_vs_reynolds"]) < 0.01:
-                print(f"h/R={eps:.1e}: {r['model']} {r['resolution']} (within 1 % of the finest) is {r['time_s'] / td:.2e}x slower than the damper")
+            if (
+                r["h_over_R"] == eps
+                and r["model"].startswith("reynolds")
+                and abs(r["err_vs_reynolds"]) < 0.01
+            ):
+                print(
+                    f"h/R={eps:.1e}: {r['model']} {r['resolution']} (within 1 % of "
+                    f"the finest) is {r['time_s'] / td:.2e}x slower than the damper"
+                )
                 break
     print()
-    print(f"{'n':>7}{'cells':>7}{'Newton it':>10}{'time (s)':>11}{'closed form (s)':>17}{'rel error':>12}")
+    print(
+        f"{'n':>7}{'cells':>7}{'Newton it':>10}{'time (s)':>11}"
+        f"{'closed form (s)':>17}{'rel error':>12}"
+    )
     for r in pl_rows:
         print(f"{r['n']:>7.3f}{r['cells']:>7d}{r['nit']:>10d}{r['time_s']:>11.3e}{r['closed_form_time_s']:>17.3e}{r['rel_error']:>+12.2e}")
     sl_out = out.with_name(out.stem + "_sliding.csv")
     write_csv(sl_out, sl_rows)
     print()
-    print("sliding drag: d D / d ln(R/h) / (6 pi eta R U) from Reynolds x-y (GCB: 8/15 = 0.5333, Eq. 12: 1/3)")
-    print(f"{'cells':>7}{'time (s)':>11}{'GCB (s)':>11}{'slope':>9}{'GCB err':>10}{'Eq.12 err':>11}")
+    print(
+        "sliding drag: d D / d ln(R/h) / (6 pi eta R U) "
+        "from Reynolds x-y (GCB: 8/15 = 0.5333, Eq. 12: 1/3)"
+    )
+    print(
+        f"{'cells':>7}{'time (s)':>11}{'GCB (s)':>11}{'slope':>9}{'GCB err':>10}{'Eq.12 err':>11}"
+    )
     for r in sl_rows:
         print(f"{r['cells']:>7d}{r['time_s']:>11.3e}{r['gcb_time_s']:>11.3e}{r['log_slope']:>9.4f}"
               f"{r['err_vs_gcb']:>+10.2e}{r['err_couette_vs_reynolds']:>+11.2e}")
@@ -190,7 +254,10 @@ def main(argv=None) -> int:
 
 
 def _quad_python(R, eta, h0, V, nodes, xs, ws, xi_max):
-    """Evaluate the exact first integral by Gauss-Legendre in pure Python (no numpy call overhead)."""
+    """Evaluate the exact first integral by Gauss-Legendre in pure Python.
+
+    Pure Python avoids numpy's per-call overhead.
+    """
     rc = math.sqrt(2.0 * R * h0)
     s = 0.0
     for x, w in zip(xs, ws):
@@ -202,7 +269,10 @@ def _quad_python(R, eta, h0, V, nodes, xs, ws, xi_max):
 
 
 def axisymmetric_speedup(quick: bool) -> list[dict]:
-    """Damper vs accurate axisymmetric Reynolds solves at 1 % error; prints the table, returns rows."""
+    """Damper vs accurate axisymmetric Reynolds solves at 1 % error.
+
+    Prints the table, returns rows.
+    """
     import numpy as np
 
     from tribolmp.models.lubrication import reference as ref
@@ -247,26 +317,55 @@ def axisymmetric_speedup(quick: bool) -> list[dict]:
         t, f = _time(lambda: 6 * math.pi * eta * R * R * V / gaps, min_time=0.02)
         add("damper (vectorised)", f"batch={gaps.size}", t / gaps.size, float(f[0]), per="gap")
         for nodes in (6, 8, 12):
-            t, f = _time(lambda: quadrature_force_many(R, eta, gaps, V, nodes=nodes, domain=dom), min_time=0.02, repeats=2)
-            add("reynolds quadrature (vectorised)", f"nodes={nodes} batch={gaps.size}", t / gaps.size, float(f[0]), per="gap")
+            t, f = _time(
+                lambda: quadrature_force_many(R, eta, gaps, V, nodes=nodes, domain=dom),
+                min_time=0.02,
+                repeats=2,
+            )
+            add(
+                "reynolds quadrature (vectorised)",
+                f"nodes={nodes} batch={gaps.size}",
+                t / gaps.size,
+                float(f[0]),
+                per="gap",
+            )
 
-    print("\n== axisymmetric squeeze: damper against Reynolds solves (error vs the exact truncated-disc film)")
-    print(f"{'h/R':>8} {'method':<34}{'resolution':<24}{'time':>11} {'per':<5}{'err vs Reynolds':>16}{'err vs Stokes':>15}")
+    print(
+        "\n== axisymmetric squeeze: damper against Reynolds "
+        "solves (error vs the exact truncated-disc film)"
+    )
+    print(
+        f"{'h/R':>8} {'method':<34}{'resolution':<24}{'time':>11} "
+        f"{'per':<5}{'err vs Reynolds':>16}{'err vs Stokes':>15}"
+    )
     for r in rows:
-        print(f"{r['h_over_R']:>8.0e} {r['method']:<34}{r['resolution']:<24}{r['time_s']:>11.3e} {r['per']:<5}"
-              f"{r['err_vs_reynolds_exact']:>+16.2e}{r['err_vs_stokes']:>+15.2e}")
-    print("\nspeed-up of the damper over the fastest Reynolds solve within 1 % of the exact thin-film force:")
+        print(
+            f"{r['h_over_R']:>8.0e} "
+            f"{r['method']:<34}{r['resolution']:<24}{r['time_s']:>11.3e} {r['per']:<5}"
+            f"{r['err_vs_reynolds_exact']:>+16.2e}{r['err_vs_stokes']:>+15.2e}"
+        )
+    print(
+        "\nspeed-up of the damper over the fastest Reynolds "
+        "solve within 1 % of the exact thin-film force:"
+    )
     for eps in sorted({r["h_over_R"] for r in rows}):
         sub = [r for r in rows if r["h_over_R"] == eps]
         td = min(r["time_s"] for r in sub if r["method"] == "damper")
         tdv = min(r["time_s"] for r in sub if r["method"] == "damper (vectorised)")
-        for m in ("reynolds FE (sparse)", "reynolds quadrature (numpy)", "reynolds quadrature (python)",
-                  "reynolds quadrature (vectorised)"):
+        for m in (
+            "reynolds FE (sparse)",
+            "reynolds quadrature (numpy)",
+            "reynolds quadrature (python)",
+            "reynolds quadrature (vectorised)",
+        ):
             ok = [r for r in sub if r["method"] == m and abs(r["err_vs_reynolds_exact"]) < 0.01]
             if ok:
                 best = min(ok, key=lambda r: r["time_s"])
                 base = tdv if "vectorised" in m else td
-                print(f"  h/R={eps:.0e}: {m:<34} {best['resolution']:<22} {best['time_s'] / base:>9.3g}x")
+                print(
+                    f"  h/R={eps:.0e}: {m:<34} {best['resolution']:<22} "
+                    f"{best['time_s'] / base:>9.3g}x"
+                )
                 for r in sub:
                     if r is best:
                         r["speedup_of_damper"] = best["time_s"] / base
@@ -288,9 +387,14 @@ def mixed_squeeze_figure(csv_path, png_path, quick: bool) -> None:
     t_plate = 6 * eta * SQUARE_POISSON * L**4 * (g.mean() ** -2 - (g.mean() + gap0) ** -2) / W
     t = np.concatenate([[0.0], np.geomspace(1e-9, 1.0, 120 if quick else 400)])
     runs = {}
-    for name, kw in (("nominal film + summit dampers (new)", {}), ("smooth nominal film + summit dampers", {"flow_factor": "smooth"}),
-                     ("summit dampers only (old model)", {"nominal_film": False})):
-        r = mixed_approach(x, g, MixedParams(viscosity=eta, E_star=1.13e11, load=W, gap0=gap0, **kw), times=t)
+    for name, kw in (
+        ("nominal film + summit dampers (new)", {}),
+        ("smooth nominal film + summit dampers", {"flow_factor": "smooth"}),
+        ("summit dampers only (old model)", {"nominal_film": False}),
+    ):
+        r = mixed_approach(
+            x, g, MixedParams(viscosity=eta, E_star=1.13e11, load=W, gap0=gap0, **kw), times=t
+        )
         runs[name] = (r.d, r.spring_force, r.contact_time)
     rows = []
     for i, tt in enumerate(t):
@@ -302,7 +406,10 @@ def mixed_squeeze_figure(csv_path, png_path, quick: bool) -> None:
         rows.append(row)
     write_csv(csv_path, rows)
     first = {name: tc for name, (_, _, tc) in runs.items()}
-    print("\n== film squeeze-out (1.024 mm rough MDR profile, sigma 0.5 um, 1 N, 0.1 Pa s, 1 um above the top summit)")
+    print(
+        "\n== film squeeze-out (1.024 mm rough MDR profile, "
+        "sigma 0.5 um, 1 N, 0.1 Pa s, 1 um above the top summit)"
+    )
     for name, tc in first.items():
         print(f"  {name:<40} first solid contact at ~{tc:.3g} s (output grid)")
     print(f"  smooth-plate estimate to first touch: {t_plate:.3g} s")

@@ -1,4 +1,6 @@
-"""Throughput of the MCA interaction laws (mca vs bpm/spring/plastic), and of the friction deck's interfaces.
+"""Throughput of the MCA interaction laws and of the friction deck's interfaces.
+
+Laws compared: mca and bpm/spring/plastic.
 
 Default (law comparison, issue 13): the same periodic lattice block (2D hexagonal and 3D FCC,
 d = 2.5 nm steel, thermal noise, sheared at a constant tilt velocity through yield) runs
@@ -196,7 +198,9 @@ def main(argv: list[str] | None = None) -> int:
     """Run the benchmark; print the table and write the CSV."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="small systems, short loops")
-    ap.add_argument("--interfaces", action="store_true", help="Python vs lmp vs 2 ranks (friction deck)")
+    ap.add_argument(
+        "--interfaces", action="store_true", help="Python vs lmp vs 2 ranks (friction deck)"
+    )
     ap.add_argument("--loop", type=float, default=12.0, help="target loop time per law run (s)")
     ap.add_argument("--block-worker", default=None, help=argparse.SUPPRESS)
     ap.add_argument(
@@ -226,7 +230,8 @@ def main(argv: list[str] | None = None) -> int:
     csv_path.parent.mkdir(parents=True, exist_ok=True)
     rows = []
     print(
-        f"{'size':>5} {'atoms':>6} {'mode':>9} {'ranks':>5} {'steps':>6} {'loop_s':>8} {'Matom-steps/s':>13} "
+        f"{'size':>5} {'atoms':>6} {'mode':>9} {'ranks':>5} "
+        f"{'steps':>6} {'loop_s':>8} {'Matom-steps/s':>13} "
         f"{'vs py-1':>7} {'max rel diff':>12} {'load':>5}"
     )
     with tempfile.TemporaryDirectory(prefix="mca_bench_") as tmp:
@@ -275,8 +280,10 @@ def main(argv: list[str] | None = None) -> int:
                 }
                 rows.append(row)
                 print(
-                    f"{label:>5} {row['atoms']:>6} {kind:>9} {row['ranks']:>5} {row['steps']:>6} {row['loop_s']:>8.2f} "
-                    f"{row['atom_steps_per_s'] / 1e6:>13.2f} {row['ratio_vs_python_1rank']:>7.2f} {diff:>12.2e} "
+                    f"{label:>5} {row['atoms']:>6} {kind:>9} {row['ranks']:>5} "
+                    f"{row['steps']:>6} {row['loop_s']:>8.2f} "
+                    f"{row['atom_steps_per_s'] / 1e6:>13.2f} "
+                    f"{row['ratio_vs_python_1rank']:>7.2f} {diff:>12.2e} "
                     f"{row['load_avg_1min']:>5.1f}"
                 )
     write_csv(csv_path, rows)

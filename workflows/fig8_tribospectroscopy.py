@@ -22,7 +22,13 @@ import numpy as np
 
 def main(argv=None) -> int:
     """Generate, fit and plot; returns 0 when the fitted length is within 35-65 nm."""
-    from tribolmp.models.tribospectroscopy import TribospecParams, fit_length, read_curve_csv, solve, write_curve_csv
+    from tribolmp.models.tribospectroscopy import (
+        TribospecParams,
+        fit_length,
+        read_curve_csv,
+        solve,
+        write_curve_csv,
+    )
     from tribolmp.models.tribospectroscopy.plot import plot_fit
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -38,8 +44,15 @@ def main(argv=None) -> int:
     # steel probe: 0.5 N per contact, mu = 0.3 -> F(0) = 2 mu N = 0.3 N; lambda = 50 nm per contact
     probe_amp = np.linspace(0.0, 0.5e-6, args.points)
     f0 = 0.3
-    params = TribospecParams(amplitudes=tuple(probe_amp / 2), model="potential", mu=0.3, normal_force=0.5,
-                             correlation_length=50e-9, force0=f0, background_sq=0.15 * f0**2)
+    params = TribospecParams(
+        amplitudes=tuple(probe_amp / 2),
+        model="potential",
+        mu=0.3,
+        normal_force=0.5,
+        correlation_length=50e-9,
+        force0=f0,
+        background_sq=0.15 * f0**2,
+    )
     model = solve(params)
     measured_sq = model.force_sq_N2 * (1.0 + args.noise * rng.standard_normal(probe_amp.size))
     measured_sq = np.abs(measured_sq)
@@ -49,17 +62,33 @@ def main(argv=None) -> int:
     fit = fit_length(curve, "auto", noise="proportional", rng=rng)
     png = plot_fit(curve, fit, out / "fig8_tribospectroscopy.png",
                    title="Fig. 8 shape: steel, synthetic data, fit per contact (a = dl/4)")
-    summary = {k: fit[k] for k in ("length_m", "length_std_m", "length_interval_m", "length_interval_95_m",
-                                   "noise_model", "coverage_tested", "model", "residual",
-                                   "delta_aic", "amplitude_convention", "candidates")}
+    summary = {
+        k: fit[k]
+        for k in (
+            "length_m",
+            "length_std_m",
+            "length_interval_m",
+            "length_interval_95_m",
+            "noise_model",
+            "coverage_tested",
+            "model",
+            "residual",
+            "delta_aic",
+            "amplitude_convention",
+            "candidates",
+        )
+    }
     i1 = int(np.argmin(np.abs(probe_amp - 0.1e-6)))
     summary["drop_to_0.1um"] = float(1 - model.force_sq_N2[i1] / model.force_sq_N2[0])
     summary["drop_0.1_to_0.5um"] = float(1 - model.force_sq_N2[-1] / model.force_sq_N2[i1])
     summary["plot"] = str(png)
     (out / "fig8_fit.json").write_text(json.dumps(summary, indent=2, default=float))
-    print(f"fitted length (per contact) {fit.length_m * 1e9:.1f} +- {fit.length_std_m * 1e9:.1f} nm "
-          f"({fit.model}; delta AIC {fit.delta_aic:.1f}); F^2 drops {summary['drop_to_0.1um']:.0%} up to 0.1 um, "
-          f"then {summary['drop_0.1_to_0.5um']:.0%} more up to 0.5 um; plot {png}")
+    print(
+        f"fitted length (per contact) {fit.length_m * 1e9:.1f} +- {fit.length_std_m * 1e9:.1f} nm "
+        f"({fit.model}; delta AIC {fit.delta_aic:.1f}); F^2 "
+        f"drops {summary['drop_to_0.1um']:.0%} up to 0.1 um, "
+        f"then {summary['drop_0.1_to_0.5um']:.0%} more up to 0.5 um; plot {png}"
+    )
     return 0 if 35e-9 < fit.length_m < 65e-9 else 1
 
 

@@ -2,7 +2,8 @@
 
 Usage::
 
-    python workflows/lubricated_polishing.py [SCENE.toml] --out DIR [--steps N] [--grid-points N] [--seed S]
+    python workflows/lubricated_polishing.py [SCENE.toml] --out DIR [--steps N] [--grid-points N]
+    [--seed S]
 
 Equivalent to ``tribolmp lubrication polish``; see docs/lubrication.md.
 """

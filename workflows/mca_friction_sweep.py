@@ -55,22 +55,56 @@ COLUMNS = (
 
 #: Columns of the committed campaign table (docs/data/mca_campaign.csv), SI.
 CAMPAIGN_COLUMNS = (
-    "run", "pressure_Pa", "sliding_velocity_m_s", "seed", "dim", "law", "box_length_m", "body_height_m",
-    "natoms", "time_s", "mu", "mu_err", "mu_steady", "layer_depth_m", "layer_depth_err_m", "localized",
-    "localized_within_m", "mixed_width_m", "mixed_width_err_m", "cross_body_links_formed",
-    "cross_body_links_per_ns", "cross_body_links_per_ns_err", "transfer_per_ns", "transfer_per_ns_err",
-    "diffusion_m2_s", "diffusion_exponent", "mu_per_s", "mu_per_s_err", "d0_m2_s", "d0_m2_s_err", "dz", "dz_err",
-    "dx_l2", "dx_l2_err", "valid_mu_per_s", "valid_d0_m2_s", "valid_dz", "valid_dx_l2", "modes_used",
-    "wall_time_s", "status",
+    "run",
+    "pressure_Pa",
+    "sliding_velocity_m_s",
+    "seed",
+    "dim",
+    "law",
+    "box_length_m",
+    "body_height_m",
+    "natoms",
+    "time_s",
+    "mu",
+    "mu_err",
+    "mu_steady",
+    "layer_depth_m",
+    "layer_depth_err_m",
+    "localized",
+    "localized_within_m",
+    "mixed_width_m",
+    "mixed_width_err_m",
+    "cross_body_links_formed",
+    "cross_body_links_per_ns",
+    "cross_body_links_per_ns_err",
+    "transfer_per_ns",
+    "transfer_per_ns_err",
+    "diffusion_m2_s",
+    "diffusion_exponent",
+    "mu_per_s",
+    "mu_per_s_err",
+    "d0_m2_s",
+    "d0_m2_s_err",
+    "dz",
+    "dz_err",
+    "dx_l2",
+    "dx_l2_err",
+    "valid_mu_per_s",
+    "valid_d0_m2_s",
+    "valid_dz",
+    "valid_dx_l2",
+    "modes_used",
+    "wall_time_s",
+    "status",
 )
 
 
 def localized(rates: dict, within_m: float) -> bool | None:
-    """Slip and mixing stay near the initial interface through the second half of the analysed window.
+    """Whether slip and mixing stay near the initial interface in the analysed second half.
 
     True when, in every persistence window of the second half, the sheared layer lies within
-    ``within_m`` of the initial interface (|layer centre offset| + half its x-averaged depth) and the
-    x-averaged mixed width is below ``2 within_m``.
+    ``within_m`` of the initial interface (|layer centre offset| + half its x-averaged depth) and
+    the x-averaged mixed width is below ``2 within_m``.
     """
     lp = rates.get("layer_persistence") or {}
     off = list(lp.get("layer_offset_m") or [])
@@ -84,31 +118,54 @@ def localized(rates: dict, within_m: float) -> bool | None:
         o = off[i]
         d = dep[i] if i < len(dep) else None
         m = mix[i] if i < len(mix) else None
-        if o is None or d is None or abs(o) + 0.5 * d > within_m or (m is not None and m > 2 * within_m):
+        if (
+            o is None
+            or d is None
+            or abs(o) + 0.5 * d > within_m
+            or (m is not None and m > 2 * within_m)
+        ):
             return False
     return True
 
 
 def campaign_row(row: dict, rates: dict, meta: dict, params) -> dict:
-    """One committed row of the campaign table from a run's rates.json and meta.json (SI, counts per ns)."""
+    """One committed row of the campaign table from a run's rates.json and meta.json.
+
+    SI units, counts per ns.
+    """
     d = float(meta.get("automaton_diameter_m") or 2.5e-9)
     within = 3 * d
     out = {
-        "run": row["run"], "pressure_Pa": row["pressure_Pa"], "sliding_velocity_m_s": row["velocity_m_s"],
-        "seed": row["seed"], "dim": (rates.get("conditions") or {}).get("dim"),
+        "run": row["run"],
+        "pressure_Pa": row["pressure_Pa"],
+        "sliding_velocity_m_s": row["velocity_m_s"],
+        "seed": row["seed"],
+        "dim": (rates.get("conditions") or {}).get("dim"),
         "law": (rates.get("conditions") or {}).get("law"),
-        "box_length_m": getattr(params, "box_length", None), "body_height_m": getattr(params, "body_height", None),
-        "natoms": meta.get("n_atoms"), "time_s": rates.get("time_s"), "mu": rates.get("mu"),
-        "mu_err": rates.get("mu_err"), "mu_steady": rates.get("mu_steady"),
-        "layer_depth_m": rates.get("layer_depth_m"), "layer_depth_err_m": rates.get("layer_depth_err_m"),
-        "localized": localized(rates, within), "localized_within_m": within,
-        "mixed_width_m": rates.get("mixed_width_m"), "mixed_width_err_m": rates.get("mixed_width_err_m"),
+        "box_length_m": getattr(params, "box_length", None),
+        "body_height_m": getattr(params, "body_height", None),
+        "natoms": meta.get("n_atoms"),
+        "time_s": rates.get("time_s"),
+        "mu": rates.get("mu"),
+        "mu_err": rates.get("mu_err"),
+        "mu_steady": rates.get("mu_steady"),
+        "layer_depth_m": rates.get("layer_depth_m"),
+        "layer_depth_err_m": rates.get("layer_depth_err_m"),
+        "localized": localized(rates, within),
+        "localized_within_m": within,
+        "mixed_width_m": rates.get("mixed_width_m"),
+        "mixed_width_err_m": rates.get("mixed_width_err_m"),
         "cross_body_links_formed": rates.get("cross_body_links_formed"),
-        "diffusion_m2_s": rates.get("diffusion_m2_s"), "diffusion_exponent": rates.get("diffusion_exponent"),
+        "diffusion_m2_s": rates.get("diffusion_m2_s"),
+        "diffusion_exponent": rates.get("diffusion_exponent"),
         "modes_used": len(rates.get("modes_used") or []),
-        "wall_time_s": meta.get("wall_time_s"), "status": row.get("status_text"),
+        "wall_time_s": meta.get("wall_time_s"),
+        "status": row.get("status_text"),
     }
-    for src, dst in (("cross_body_links_formed_per_s", "cross_body_links_per_ns"), ("transfer_per_s", "transfer_per_ns")):
+    for src, dst in (
+        ("cross_body_links_formed_per_s", "cross_body_links_per_ns"),
+        ("transfer_per_s", "transfer_per_ns"),
+    ):
         for suffix in ("", "_err"):
             v = rates.get(src + suffix)
             out[dst + suffix] = None if v is None else v * 1e-9
@@ -134,7 +191,10 @@ def append_campaign(path: Path, new: dict) -> None:
 
 
 def nanoscale_table(campaign: Path, out: Path, *, description: str, law: str | None = None) -> dict:
-    """Write the table the chain interpolates (:func:`tribolmp.analysis.nanoscale_table.build_table`)."""
+    """Write the table the chain interpolates.
+
+    Built by :func:`tribolmp.analysis.nanoscale_table.build_table`.
+    """
     from tribolmp.analysis.nanoscale_table import build_table, write_table
 
     table = build_table(campaign, law=law or "mca", description=description)
@@ -143,7 +203,10 @@ def nanoscale_table(campaign: Path, out: Path, *, description: str, law: str | N
 
 
 def campaign_figures(campaign: Path, out_dir: Path, prefix: str = "mca_study") -> list[Path]:
-    """Draw mu(P) per V with error bars and the layer depth (P, V) from the campaign CSV; return the PNGs."""
+    """Draw mu(P) per V with error bars and the layer depth (P, V) from the campaign CSV.
+
+    Return the PNGs.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -153,20 +216,36 @@ def campaign_figures(campaign: Path, out_dir: Path, prefix: str = "mca_study") -
         rows = [r for r in csv.DictReader(fh) if r.get("mu") not in ("", None)]
     out_dir.mkdir(parents=True, exist_ok=True)
     paths = []
-    for key, err, label, scale, name in (("mu", "mu_err", "mu", 1.0, "mu"),
-                                         ("layer_depth_m", "layer_depth_err_m", "layer depth (nm)", 1e9, "layer")):
+    for key, err, label, scale, name in (
+        ("mu", "mu_err", "mu", 1.0, "mu"),
+        ("layer_depth_m", "layer_depth_err_m", "layer depth (nm)", 1e9, "layer"),
+    ):
         fig, ax = plt.subplots(figsize=(5, 3.4))
         laws = sorted({r.get("law") or "?" for r in rows})
         markers = dict(zip(laws, "os^D"))
         for law in laws:
             for v in sorted({float(r["sliding_velocity_m_s"]) for r in rows}):
-                sel = sorted((r for r in rows if float(r["sliding_velocity_m_s"]) == v and r[key] not in ("", None)
-                              and (r.get("law") or "?") == law), key=lambda r: float(r["pressure_Pa"]))
+                sel = sorted(
+                    (
+                        r
+                        for r in rows
+                        if float(r["sliding_velocity_m_s"]) == v
+                        and r[key] not in ("", None)
+                        and (r.get("law") or "?") == law
+                    ),
+                    key=lambda r: float(r["pressure_Pa"]),
+                )
                 if not sel:
                     continue
-                ax.errorbar([float(r["pressure_Pa"]) * 1e-6 for r in sel], [float(r[key]) * scale for r in sel],
-                            yerr=[float(r[err] or 0) * scale for r in sel], fmt=markers[law], capsize=3,
-                            label=f"{law}, V = {v:g} m/s", mfc="none" if law != laws[-1] else None)
+                ax.errorbar(
+                    [float(r["pressure_Pa"]) * 1e-6 for r in sel],
+                    [float(r[key]) * scale for r in sel],
+                    yerr=[float(r[err] or 0) * scale for r in sel],
+                    fmt=markers[law],
+                    capsize=3,
+                    label=f"{law}, V = {v:g} m/s",
+                    mfc="none" if law != laws[-1] else None,
+                )
         ax.set_xscale("symlog", linthresh=1.0)
         ax.set_xlabel("P (MPa)")
         ax.set_ylabel(label)
@@ -207,8 +286,12 @@ def roughness_figure(run_dirs: list[Path], path: Path) -> dict[str, dict]:
         label = f"{run.parent.name}/{run.name}"
         ax.plot(t * 1e9, rms * 1e9, lw=0.8, label=label)
         i1 = int(np.searchsorted(t, t[0] + 1e-9))
-        out[label] = {"rms0_m": float(rms[0]), "rms_1ns_m": float(rms[min(i1, rms.size - 1)]),
-                         "rms_end_m": float(rms[-1]), "rms_last_quarter_m": float(rms[3 * rms.size // 4:].mean())}
+        out[label] = {
+            "rms0_m": float(rms[0]),
+            "rms_1ns_m": float(rms[min(i1, rms.size - 1)]),
+            "rms_end_m": float(rms[-1]),
+            "rms_last_quarter_m": float(rms[3 * rms.size // 4 :].mean()),
+        }
     ax.set_xlabel("t (ns)")
     ax.set_ylabel("rms of h(x) (nm)")
     ax.set_title("lower body's column-mass profile: roughness against time", fontsize=8)
@@ -220,7 +303,10 @@ def roughness_figure(run_dirs: list[Path], path: Path) -> dict[str, dict]:
 
 
 def eq23_figure(run_dirs: list[Path], path: Path) -> None:
-    """Plot gamma(k) and S gamma against k^2 per mode with the Eq. 23 fits, from each run's rates.json."""
+    """Plot gamma(k) and S gamma against k^2 per mode with the Eq. 23 fits.
+
+    From each run's rates.json.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -238,8 +324,13 @@ def eq23_figure(run_dirs: list[Path], path: Path) -> None:
         m = eq["modes"]
         k2 = np.asarray(m["k_per_m"]) ** 2
         used = np.asarray(m["used"], dtype=bool)
-        for ax, (y, e, c0, c1) in zip(axes, (("gamma_per_s", "gamma_err_per_s", "mu_per_s", "d0_m2_s"),
-                                             ("s_gamma_m3_s", "s_gamma_err_m3_s", "dz", "dx_l2"))):
+        for ax, (y, e, c0, c1) in zip(
+            axes,
+            (
+                ("gamma_per_s", "gamma_err_per_s", "mu_per_s", "d0_m2_s"),
+                ("s_gamma_m3_s", "s_gamma_err_m3_s", "dz", "dx_l2"),
+            ),
+        ):
             yy = np.array([np.nan if v is None else v for v in m[y]], dtype=float)
             ee = np.array([np.nan if v is None else v for v in m[e]], dtype=float)
             line = ax.errorbar(k2[used], yy[used], yerr=ee[used], fmt="o", ms=3, capsize=2,
@@ -301,37 +392,90 @@ def main(argv=None) -> int:
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="smoke preset (small, ~1 ns per run)")
-    ap.add_argument("--preset", default=None, choices=("smoke", "default", "paper"), help="size/time preset (default: default)")
-    ap.add_argument("--velocities", type=float_list, default=[1.0, 5.0, 20.0], help="sliding velocities (m/s)")
-    ap.add_argument("--pressures", type=float_list, default=[50e6, 150e6, 382e6], help="normal pressures (Pa)")
+    ap.add_argument(
+        "--preset",
+        default=None,
+        choices=("smoke", "default", "paper"),
+        help="size/time preset (default: default)",
+    )
+    ap.add_argument(
+        "--velocities", type=float_list, default=[1.0, 5.0, 20.0], help="sliding velocities (m/s)"
+    )
+    ap.add_argument(
+        "--pressures", type=float_list, default=[50e6, 150e6, 382e6], help="normal pressures (Pa)"
+    )
     ap.add_argument("--duration", type=float, default=None, help="simulated time per run (s)")
     ap.add_argument("--box-length", type=float, default=None, help="periodic length (m)")
     ap.add_argument("--body-height", type=float, default=None, help="height of each body (m)")
-    ap.add_argument("--sink-depth", type=float, default=None, help="heat-sink thickness near base and slider (m)")
-    ap.add_argument("--roughness-rms", type=float, default=None, help="rms height of each initial surface (m)")
+    ap.add_argument(
+        "--sink-depth",
+        type=float,
+        default=None,
+        help="heat-sink thickness near base and slider (m)",
+    )
+    ap.add_argument(
+        "--roughness-rms", type=float, default=None, help="rms height of each initial surface (m)"
+    )
     ap.add_argument("--dump-interval", type=float, default=None, help="trajectory interval (s)")
     ap.add_argument("--dim", type=int, default=2, choices=(2, 3))
     ap.add_argument("--np", type=int, default=1, help="MPI ranks per run")
-    ap.add_argument("--seed", type=int, default=1, help="seed of the rough surfaces (same for every run)")
-    ap.add_argument("--seeds", type=lambda t: [int(x) for x in t.split(",") if x.strip()], default=None,
-                    help="comma-separated seeds: every (V, P) once per seed (default: --seed)")
-    ap.add_argument("--law", default=None, help="bond law (tribolmp.lammps.laws registry; default: the preset's)")
-    ap.add_argument("--campaign", default=None, help="append each finished run to this CSV (the study's table)")
-    ap.add_argument("--table", default=None, help="write the nanoscale table (JSON) from --campaign at the end")
-    ap.add_argument("--description", default="", help="one line stored in the nanoscale table's provenance")
-    ap.add_argument("--figures", default=None, help="folder for the campaign figures (mu(P), layer(P)) at the end")
-    ap.add_argument("--run-prefix", default="",
-                    help="prefix of the run names (e.g. 'mca_': one campaign CSV holds several laws' rows)")
+    ap.add_argument(
+        "--seed", type=int, default=1, help="seed of the rough surfaces (same for every run)"
+    )
+    ap.add_argument(
+        "--seeds",
+        type=lambda t: [int(x) for x in t.split(",") if x.strip()],
+        default=None,
+        help="comma-separated seeds: every (V, P) once per seed (default: --seed)",
+    )
+    ap.add_argument(
+        "--law",
+        default=None,
+        help="bond law (tribolmp.lammps.laws registry; default: the preset's)",
+    )
+    ap.add_argument(
+        "--campaign", default=None, help="append each finished run to this CSV (the study's table)"
+    )
+    ap.add_argument(
+        "--table", default=None, help="write the nanoscale table (JSON) from --campaign at the end"
+    )
+    ap.add_argument(
+        "--description", default="", help="one line stored in the nanoscale table's provenance"
+    )
+    ap.add_argument(
+        "--figures",
+        default=None,
+        help="folder for the campaign figures (mu(P), layer(P)) at the end",
+    )
+    ap.add_argument(
+        "--run-prefix",
+        default="",
+        help="prefix of the run names (e.g. 'mca_': one campaign CSV holds several laws' rows)",
+    )
     ap.add_argument("--out", default="mca_sweep", help="output folder")
-    ap.add_argument("--resume", action="store_true", help="skip finished runs, resume interrupted ones")
-    ap.add_argument("--reanalyse", action="store_true",
-                    help="no LAMMPS: recompute rates.json and figures of the finished runs in --out")
+    ap.add_argument(
+        "--resume", action="store_true", help="skip finished runs, resume interrupted ones"
+    )
+    ap.add_argument(
+        "--reanalyse",
+        action="store_true",
+        help="no LAMMPS: recompute rates.json and figures of the finished runs in --out",
+    )
     args = ap.parse_args(argv)
     preset = args.preset or ("smoke" if args.quick else "default")
-    overrides = {k: v for k, v in (("duration", args.duration), ("box_length", args.box_length),
-                                   ("body_height", args.body_height), ("sink_depth", args.sink_depth),
-                                   ("bond_style", args.law), ("roughness_rms", args.roughness_rms),
-                                   ("dump_interval", args.dump_interval)) if v is not None}
+    overrides = {
+        k: v
+        for k, v in (
+            ("duration", args.duration),
+            ("box_length", args.box_length),
+            ("body_height", args.body_height),
+            ("sink_depth", args.sink_depth),
+            ("bond_style", args.law),
+            ("roughness_rms", args.roughness_rms),
+            ("dump_interval", args.dump_interval),
+        )
+        if v is not None
+    }
     seeds = args.seeds or [args.seed]
     campaign = Path(args.campaign) if args.campaign else None
     out = Path(args.out)
@@ -342,26 +486,46 @@ def main(argv=None) -> int:
     points = [(v, p, sd) for v in args.velocities for p in args.pressures for sd in seeds]
     default_law = preset_params(preset, dim=args.dim).bond_style
     for v, p, sd in points:
-        name = args.run_prefix + f"v{v:g}_p{p / 1e6:g}MPa" + (f"_s{sd}" if len(seeds) > 1 or args.seeds else "")
+        name = (
+            args.run_prefix
+            + f"v{v:g}_p{p / 1e6:g}MPa"
+            + (f"_s{sd}" if len(seeds) > 1 or args.seeds else "")
+        )
         run_dir = out / name
         row: dict = {"velocity_m_s": v, "pressure_Pa": p, "run": name, "seed": sd}
         try:
-            params = preset_params(preset, dim=args.dim, sliding_velocity=v, pressure=p, **overrides)
+            params = preset_params(
+                preset, dim=args.dim, sliding_velocity=v, pressure=p, **overrides
+            )
             rates_path = run_dir / "rates.json"
             if (args.resume and rates_path.exists()) or args.reanalyse:
                 if not (run_dir / "traj.lammpstrj").exists():
                     raise RunError(f"{run_dir}: no finished run to reanalyse")
-                rates = compute_rates(run_dir) if args.reanalyse else json.loads(rates_path.read_text())
+                rates = (
+                    compute_rates(run_dir) if args.reanalyse else json.loads(rates_path.read_text())
+                )
                 meta = json.loads((run_dir / "meta.json").read_text())
                 row.update(natoms=meta.get("n_atoms"), wall_time_s=meta.get("wall_time_s"),
                            atom_steps_per_s=meta.get("atom_steps_per_s"))
             else:
                 res = run_mca(params, run_dir, seed=sd, resume=args.resume, np=args.np)
                 rates = res.get("rates") or {}
-                row.update(natoms=res.natoms, wall_time_s=res.wall_time_s, atom_steps_per_s=res.atom_steps_per_s)
-            row.update({k: rates.get(k) for k in rates if k not in ("units", "provenance", "layer_persistence")})
+                row.update(
+                    natoms=res.natoms,
+                    wall_time_s=res.wall_time_s,
+                    atom_steps_per_s=res.atom_steps_per_s,
+                )
+            row.update(
+                {
+                    k: rates.get(k)
+                    for k in rates
+                    if k not in ("units", "provenance", "layer_persistence")
+                }
+            )
             warn = rates.get("warnings") or []
-            row["status_text"] = "ok" if not warn else f"{len(warn)} warning(s), first: {warn[0][:70]}"
+            row["status_text"] = (
+                "ok" if not warn else f"{len(warn)} warning(s), first: {warn[0][:70]}"
+            )
             plot_friction(run_dir, run_dir / "mu_t.png", title=name)
             plot_snapshot(run_dir, run_dir / "snapshot.png", title=f"{name}: last frame")
             vp = VelocityProfile.from_output(run_dir).run(frames=_steady(rates, run_dir))
@@ -380,13 +544,26 @@ def main(argv=None) -> int:
             failed += 1
         if campaign is not None and not row.get("finished"):
             # a failed run is a row too (status says why), so the table shows what is missing
-            append_campaign(campaign, {"run": name, "pressure_Pa": p, "sliding_velocity_m_s": v, "seed": sd,
-                                       "law": overrides.get("bond_style") or default_law, "dim": args.dim,
-                                       "status": row["status_text"]})
+            append_campaign(
+                campaign,
+                {
+                    "run": name,
+                    "pressure_Pa": p,
+                    "sliding_velocity_m_s": v,
+                    "seed": sd,
+                    "law": overrides.get("bond_style") or default_law,
+                    "dim": args.dim,
+                    "status": row["status_text"],
+                },
+            )
         rows.append(row)
         csv_path, md_path = write_tables(rows, out)
-        print(f"{name}: mu={_cell(row, 'mu', 1.0, '{:.3f}')} layer={_cell(row, 'layer_depth_m', 1e9, '{:.2f}')} nm "
-              f"[{row['status_text'][:80]}]", flush=True)
+        print(
+            f"{name}: mu={_cell(row, 'mu', 1.0, '{:.3f}')} "
+            f"layer={_cell(row, 'layer_depth_m', 1e9, '{:.2f}')} nm "
+            f"[{row['status_text'][:80]}]",
+            flush=True,
+        )
     print(f"wrote {csv_path} and {md_path} in {time.perf_counter() - t_all:.0f} s")
     if args.table and campaign is not None and campaign.exists():
         nanoscale_table(campaign, Path(args.table), description=args.description,

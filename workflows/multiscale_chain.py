@@ -22,9 +22,13 @@ def main(argv=None) -> int:
     from tribolmp.scene import default_scene, load_scene
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("scene", nargs="?", help="TOML scene (default: the embedded steel-steel scene)")
+    parser.add_argument(
+        "scene", nargs="?", help="TOML scene (default: the embedded steel-steel scene)"
+    )
     parser.add_argument("--out", default="tribolmp-run", help="output folder")
-    parser.add_argument("--force", action="append", choices=STAGES, default=[], help="recompute this stage")
+    parser.add_argument(
+        "--force", action="append", choices=STAGES, default=[], help="recompute this stage"
+    )
     parser.add_argument("--plan", action="store_true", help="only print the plan")
     args = parser.parse_args(argv)
     try:
@@ -40,7 +44,10 @@ def main(argv=None) -> int:
     except RunError as exc:
         print(f"multiscale_chain: {exc}", file=sys.stderr)
         return 3
-    print(f"{len([e for e in run.entries.values() if e.ran])} stage(s) ran; report: {run.out_dir / 'report.md'}")
+    print(
+        f"{len([e for e in run.entries.values() if e.ran])} "
+        f"stage(s) ran; report: {run.out_dir / 'report.md'}"
+    )
     return 0
 
 
