@@ -23,7 +23,7 @@ def _no_rates(monkeypatch):
     # the analysis package is tested by its owner; these tests check the simulation side only
     from tribolmp.lammps.mca import driver
 
-    monkeypatch.setattr(driver, "compute_rates_if_available", lambda out: None)
+    monkeypatch.setattr(driver, "compute_rates", lambda out: None)
 
 
 def _friction(out: Path) -> np.ndarray:
@@ -35,13 +35,13 @@ def smoke_run(tmp_path_factory, lammps_available):
     out = tmp_path_factory.mktemp("smoke")
     from tribolmp.lammps.mca import driver
 
-    keep = driver.compute_rates_if_available
-    driver.compute_rates_if_available = lambda out: None
+    keep = driver.compute_rates
+    driver.compute_rates = lambda out: None
     try:
         # calibrated on the plastic law (the mca law has its own tests, tests/mca/test_law_*)
         res = run_mca(preset_params("smoke", bond_style="bpm/spring/plastic"), out, seed=11)
     finally:
-        driver.compute_rates_if_available = keep
+        driver.compute_rates = keep
     return out, res
 
 

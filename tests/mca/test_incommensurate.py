@@ -42,7 +42,7 @@ def washboard_ratio(out, *, t0: float, velocity: float, d: float) -> float:
 def test_no_washboard_line_at_v_over_d(texture, tmp_path, monkeypatch, lammps_available):
     from tribolmp.lammps.mca import driver
 
-    monkeypatch.setattr(driver, "compute_rates_if_available", lambda out: None)
+    monkeypatch.setattr(driver, "compute_rates", lambda out: None)
     # the default scene's nanoscale size (100 nm box, 25 nm bodies, ~900-1100 automata), 5 ns:
     # 4 ns of sliding after the first nanosecond give 0.25 GHz bins around V/d = 2 GHz
     # measured (and thresholded) with the bpm law; with the mca law "aligned" gives 9.3 (seed 7)

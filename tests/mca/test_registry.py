@@ -77,7 +77,7 @@ def test_a_new_law_is_one_entry_plus_its_fragment(tmp_path, monkeypatch, lammps_
     from tribolmp.lammps.mca import driver, run_mca
 
     monkeypatch.setattr(deck_mod, "laws_dir", lambda: frags)
-    monkeypatch.setattr(driver, "compute_rates_if_available", lambda out: None)
+    monkeypatch.setattr(driver, "compute_rates", lambda out: None)
     params = preset_params("smoke", duration=0.1e-9, ramp_time=0.05e-9, bond_style="toy")
     run_mca(params, tmp_path / "toy", seed=3)
     ref = preset_params(

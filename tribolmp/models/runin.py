@@ -193,9 +193,9 @@ def contact_at_load(
 ) -> dict[str, Any]:
     """Solve a periodic patch at one nominal pressure: stiffness per area, contact fraction.
 
-    ``method = "bem"``: the periodic BEM (contract C5
-    ``tribolmp.models.contact.interfacial_stiffness`` when installed, else
-    :func:`~tribolmp.models.contact.bem.solve_bem`), which gives the area.
+    ``method = "bem"``: the periodic BEM
+    (:func:`tribolmp.models.contact.interfacial_stiffness`, contract C5),
+    which gives the area.
     ``method = "mdr"``: the MDR ensemble of 1D profiles with the patch's
     spectrum; no area (``area_fraction`` None), ``phi`` from
     :func:`~tribolmp.models.bridges.contact_fraction_estimate`.
@@ -210,21 +210,13 @@ def contact_at_load(
     patch = h.shape[0] * h.shape[1] * dx * dx
     grad = bridges.rms_gradient(h, dx)
     if method == "bem":
-        try:
-            from .contact import interfacial_stiffness  # contract C5 (valcontact)
-        except ImportError:
-            interfacial_stiffness = None
-        if interfacial_stiffness is not None:
-            r = interfacial_stiffness(h, dx, E_star, [pressure])
-            kpa, area = (
-                float(np.asarray(r["stiffness_per_area"])[0]),
-                float(np.asarray(r["area_fraction"])[0]),
-            )
-        else:
-            from .contact.bem import solve_bem
+        from .contact import interfacial_stiffness  # contract C5
 
-            r = solve_bem(h, dx, E_star, pressure, periodic=True)
-            kpa, area = float(r.stiffness) / patch, float(r.area_fraction)
+        r = interfacial_stiffness(h, dx, E_star, [pressure])
+        kpa, area = (
+            float(np.asarray(r["stiffness_per_area"])[0]),
+            float(np.asarray(r["area_fraction"])[0]),
+        )
         phi, src = area, "BEM real-contact fraction"
     elif method == "mdr":
         from .contact.solve import solve_rough

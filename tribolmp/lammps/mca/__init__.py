@@ -17,8 +17,8 @@ The interaction laws come from :mod:`tribolmp.lammps.laws` (one registry).
 Output directory contract (read by :mod:`tribolmp.analysis`):
 ``traj.lammpstrj`` (``id mol type x y z vx vy vz radius c_nbond``, LAMMPS nano
 units), ``friction.csv`` (``time_s,friction_N,normal_N,top_x_m``, SI),
-``run.log``, ``restart.<step>.bin``, ``meta.json`` and, when the analysis
-package provides it, ``rates.json``.
+``run.log``, ``restart.<step>.bin``, ``meta.json``, ``rates.json`` and
+``profile.npz`` (written by :mod:`tribolmp.analysis.rates`).
 """
 
 from .deck import deck_variables

@@ -1,20 +1,25 @@
-"""The call into the analysis that writes ``rates.json`` (optional dependency)."""
+"""The call into the analysis that writes ``rates.json``."""
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 
-__all__ = ["compute_rates_if_available"]
+__all__ = ["compute_rates"]
 
 
-def compute_rates_if_available(out: Path) -> dict | None:
-    """``tribolmp.analysis.rates.compute_rates(out)``.
+def compute_rates(out: Path) -> dict:
+    """Run :func:`tribolmp.analysis.rates.compute_rates` on the output folder ``out``.
 
-    Or None when the analysis is not installed.
+    Parameters
+    ----------
+    out : Path
+        A finished MCA output folder (``friction.csv``, ``traj.lammpstrj``, ``meta.json``).
+
+    Returns
+    -------
+    dict
+        The rates record, also written to ``out/rates.json``.
     """
-    if importlib.util.find_spec("tribolmp.analysis.rates") is None:
-        return None
-    from ...analysis.rates import compute_rates  # lazy: MDAnalysis is heavy
+    from ...analysis.rates import compute_rates as _compute  # lazy: MDAnalysis is heavy
 
-    return compute_rates(out)
+    return _compute(out)
