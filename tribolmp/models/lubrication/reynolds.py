@@ -41,7 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ConvergenceError, ParameterError
-from ...scene.fields import param, validate_dataclass
+from ...params import param, renamed, validate_dataclass
 from ..base import MethodRegistry, Result, timed
 
 __all__ = [
@@ -56,6 +56,8 @@ __all__ = [
 REYNOLDS = MethodRegistry("reynolds")
 
 
+# ``velocity`` kept: CLI --velocity (errors name it as given), docs/conventions.md
+@renamed(velocity="approach_velocity")
 @dataclass(frozen=True)
 class ReynoldsParams:
     """Parameters of a Reynolds squeeze-film solve (SI units).
@@ -66,7 +68,7 @@ class ReynoldsParams:
         Sphere radius R in m.
     gap : float
         Minimum gap h0 in m.
-    velocity : float
+    approach_velocity : float
         Approach speed V = -dh/dt in m/s (V > 0: the gap closes).
     viscosity : float
         Newtonian viscosity eta in Pa s (used as K when ``consistency`` is None).
@@ -92,7 +94,7 @@ class ReynoldsParams:
 
     radius: float = param(1e-3, unit="m", lo=0.0, lo_open=True, hi=1e3)
     gap: float = param(1e-6, unit="m", lo=0.0, lo_open=True, hi=1e3)
-    velocity: float = param(1e-3, unit="m/s", lo=-1e6, hi=1e6)
+    approach_velocity: float = param(1e-3, unit="m/s", lo=-1e6, hi=1e6)
     viscosity: float = param(0.1, unit="Pa s", lo=0.0, lo_open=True, hi=1e9)
     power_law_index: float = param(1.0, lo=1.0 / 3.0, lo_open=True, hi=5.0)
     consistency: float | None = param(None, unit="Pa s^n", lo=0.0, lo_open=True, hi=1e9)
@@ -299,8 +301,8 @@ def _axisymmetric(p: ReynoldsParams) -> Result:
             coeff[key] += 0.5 * cq[key] * 2.0 * math.pi * rq * dr
     # Source S_i = int V phi_i 2 pi r dr (exact for hat functions).
     r0, r1 = r[:-1], r[1:]
-    left = 2.0 * math.pi * p.velocity * dr * (2.0 * r0 + r1) / 6.0
-    right = 2.0 * math.pi * p.velocity * dr * (r0 + 2.0 * r1) / 6.0
+    left = 2.0 * math.pi * p.approach_velocity * dr * (2.0 * r0 + r1) / 6.0
+    right = 2.0 * math.pi * p.approach_velocity * dr * (r0 + 2.0 * r1) / 6.0
     S = np.bincount(conn[:, 0], left, minlength=r.size) + np.bincount(
         conn[:, 1], right, minlength=r.size
     )
@@ -351,7 +353,7 @@ def _xy(p: ReynoldsParams) -> Result:
     )
     # 3-point (edge-midpoint) rule, exact for quadratics, for int a(h) dA.
     coeff = {"newton": np.zeros(conn.shape[0]), "power": np.zeros(conn.shape[0])}
-    S = np.bincount(conn.ravel(), np.repeat(p.velocity * area / 3.0, 3), minlength=nx * nx)
+    S = np.bincount(conn.ravel(), np.repeat(p.approach_velocity * area / 3.0, 3), minlength=nx * nx)
     U = p.sliding_velocity
     mids = []
     for i, j in ((0, 1), (1, 2), (2, 0)):
@@ -428,8 +430,8 @@ def quadrature_force(p: ReynoldsParams, nodes: int | None = None):
     h = _gap(p, r)
     n = p.power_law_index
     a = h**3 / (12.0 * p.K) if n == 1.0 else _mobility(p, h)
-    G = (abs(p.velocity) * r / (2.0 * a)) ** n
-    return math.copysign(float(np.sum(wg * math.pi * r * r * G * drdxi)), p.velocity)
+    G = (abs(p.approach_velocity) * r / (2.0 * a)) ** n
+    return math.copysign(float(np.sum(wg * math.pi * r * r * G * drdxi)), p.approach_velocity)
 
 
 def quadrature_force_many(

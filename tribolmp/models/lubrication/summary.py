@@ -60,19 +60,21 @@ def lubrication_summary(scene, *, gaps_over_radius=None, reynolds_cells: int = 4
             fr.append(rey.force)
             tr.append(rey.truncation_error)
             if p.newtonian:
-                fb.append(float(brenner_force(p.radius, p.viscosity, float(h), p.velocity)))
+                fb.append(
+                    float(brenner_force(p.radius, p.viscosity, float(h), p.approach_velocity))
+                )
         fd, fr = np.array(fd), np.array(fr)
         res.update(
             alpha=damper_coefficient(p.radius, p.viscosity),
             radius=p.radius,
-            velocity=p.velocity,
+            velocity=p.approach_velocity,
             power_law_index=p.power_law_index,
             gap=gaps,
             gap_over_radius=eps,
             force_damper=fd,
             force_reynolds=fr,
-            error_damper_vs_reynolds=fd / fr
-            - 1.0,  # kept for the JSON contract; = reynolds_grid_error
+            # kept for the JSON contract; = reynolds_grid_error
+            error_damper_vs_reynolds=fd / fr - 1.0,
             reynolds_grid_error=fd / fr - 1.0,
             reynolds_truncation_error=np.array(tr),
         )
