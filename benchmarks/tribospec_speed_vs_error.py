@@ -106,7 +106,7 @@ def curve_table(quick: bool):
                     normal_force=N,
                     amplitude=float(a),
                     frequency=65e3,
-                    velocity=V_per_cycle * 65e3,
+                    sliding_velocity=V_per_cycle * 65e3,
                     duration=n_cyc / 65e3,
                     steps_per_cycle=spc,
                 )
@@ -149,7 +149,7 @@ def multirate_table(quick: bool):
             normal_force=N,
             amplitude=0.5 * L,
             frequency=65e3,
-            velocity=1e-4,
+            sliding_velocity=1e-4,
             duration=dur,
             steps_per_cycle=32,
             slow_steps=max(2, int(dur * 65e3 / 4)),

@@ -72,7 +72,7 @@ def test_averaged_scheme_matches_brute_force_short_window():
             normal_force=N,
             amplitude=a,
             frequency=65e3,
-            velocity=1e-4,
+            sliding_velocity=1e-4,
             duration=0.6e-3,
             steps_per_cycle=32,
             slow_steps=40,
@@ -88,7 +88,12 @@ def test_averaged_scheme_matches_brute_force_short_window():
 def test_averaged_cost_is_independent_of_frequency():
     c = _contact(n=101)
     p = DriftParams(
-        normal_force=N, amplitude=5e-8, frequency=65e3, velocity=1e-4, duration=1.0, slow_steps=400
+        normal_force=N,
+        amplitude=5e-8,
+        frequency=65e3,
+        sliding_velocity=1e-4,
+        duration=1.0,
+        slow_steps=400,
     )
     avg = drift_under_oscillation(p, c, scheme="averaged")
     # one second of drift at 65 kHz: brute force would take 65e3 * 32 = 2e6 steps

@@ -144,7 +144,7 @@ def test_rough_contact_from_the_contact_model(rng):
         normal_force=N,
         amplitude=0.3 * L,
         frequency=65e3,
-        velocity=0.01 * L * 65e3,
+        sliding_velocity=0.01 * L * 65e3,
         duration=250 / 65e3,
         steps_per_cycle=16,
         slow_steps=250,

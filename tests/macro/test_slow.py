@@ -26,8 +26,15 @@ def test_averaged_error_vanishes_with_the_drift_per_cycle():
     errs = []
     for frac in (0.02, 0.005):  # drift per cycle as a fraction of mu N / k
         n_cyc = int(2.5 / frac)  # drift 2.5 L: well into steady sliding
-        p = DriftParams(normal_force=N, amplitude=0.5 * L, frequency=65e3, velocity=frac * L * 65e3,
-                        duration=n_cyc / 65e3, steps_per_cycle=16, slow_steps=n_cyc)
+        p = DriftParams(
+            normal_force=N,
+            amplitude=0.5 * L,
+            frequency=65e3,
+            sliding_velocity=frac * L * 65e3,
+            duration=n_cyc / 65e3,
+            steps_per_cycle=16,
+            slow_steps=n_cyc,
+        )
         b = drift_under_oscillation(p, c, scheme="brute")
         a = drift_under_oscillation(p, c, scheme="averaged")
         errs.append(np.max(np.abs(b.force - np.interp(b.t, a.t, a.force))) / (2 * mu * N))

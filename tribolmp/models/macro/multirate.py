@@ -137,8 +137,8 @@ class DriftParams:
         Per-contact amplitude a (m).
     frequency : float
         Oscillation frequency (Hz).
-    velocity : float
-        Slow drift speed V (m/s).
+    sliding_velocity : float
+        Slow drift (sliding) speed V (m/s).
     duration : float
         Simulated time (s).
     steps_per_cycle : int
@@ -150,7 +150,7 @@ class DriftParams:
     normal_force: float = param(5.0, unit="N", lo=0.0, lo_open=True, hi=1e9)
     amplitude: float = param(1e-7, unit="m", lo=0.0, hi=1e-2)
     frequency: float = param(65e3, unit="Hz", lo=0.0, lo_open=True, hi=1e9)
-    velocity: float = param(1e-4, unit="m/s", lo=0.0, hi=10.0)
+    sliding_velocity: float = param(1e-4, unit="m/s", lo=0.0, hi=10.0)
     duration: float = param(2e-3, unit="s", lo=0.0, lo_open=True, hi=1e6)
     steps_per_cycle: int = param(64, lo=8, hi=10**5)
     slow_steps: int = param(400, lo=2, hi=10**8)
@@ -198,7 +198,7 @@ def _brute(p: DriftParams, contact):
     means = np.empty(n_cyc)
     for j in range(n_cyc):
         t = (j + tau) / p.frequency
-        X = p.velocity * t
+        X = p.sliding_velocity * t
         osc = p.amplitude * np.sin(2 * np.pi * (j + tau))
         f = np.array([c1.step(d, x + o)[1] + c2.step(d, x - o)[1] for x, o in zip(X, osc)])
         means[j] = f.mean()
@@ -211,7 +211,7 @@ def _averaged(p: DriftParams, contact):
     q, k = contact.springs(p.normal_force)
     avg = AveragedContact(q, k, contact.mu, p.amplitude)
     t = np.linspace(0.0, p.duration, p.slow_steps + 1)  # includes the initial state
-    f = np.array([2.0 * avg.step(p.velocity * ti) for ti in t])
+    f = np.array([2.0 * avg.step(p.sliding_velocity * ti) for ti in t])
     return t, f, p.slow_steps
 
 
