@@ -283,3 +283,23 @@ def test_fig10_shape_from_the_running_in_loop():
         assert sum(r.phi[:-1]) * eq.mu * 0.025 > 1e4
         out.append(r.h)
     fig10_checks(out[0], out[1], yes, no, n, dx)
+
+
+def test_warm_started_checkpoint_bem_is_the_c5_interfacial_stiffness():
+    """The checkpoint solve (warm start from another surface's pressure, tol 1e-8) = C5 at 1e-10.
+
+    K and A depend only on the converged contact set, so they agree to round-off (1e-9 relative:
+    the stiffness is a CG solve to 1e-8 on that set, identical sets give identical numbers); the
+    warm start must not change the set.
+    """
+    from tribolmp.models.contact import interfacial_stiffness
+    from tribolmp.models.contact.bem import solve_bem
+
+    h, dx, _ = _surface(seed=2)
+    p = 1e7
+    ref = interfacial_stiffness(h, dx, E_STEEL, [p])  # cold, tol 1e-10
+    other = solve_bem(0.98 * np.roll(h, 3, axis=0), dx, E_STEEL, p, periodic=True)
+    c = runin.contact_at_load(h, dx, E_star=E_STEEL, pressure=p, method="bem", realizations=1,
+                              seed=0, p0=other.p)
+    assert c["area_fraction"] == pytest.approx(float(ref.area_fraction[0]), rel=1e-9)
+    assert c["k_per_area"] == pytest.approx(float(ref.stiffness_per_area[0]), rel=1e-9)

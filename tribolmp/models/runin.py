@@ -46,8 +46,11 @@ from .base import Result
 #: Fewest BEM contact pixels for a real-contact fraction resolved to ~2 % per pixel (below this
 #: the coupled loop is quantized by the pixel count, see :func:`running_in`).
 MIN_CONTACT_PIXELS = 40
+#: Relative L1 pressure change at which the checkpoint BEM stops (see :func:`contact_at_load`).
+BEM_TOL = 1e-8
 
 __all__ = [
+    "BEM_TOL",
     "MIN_CONTACT_PIXELS",
     "RunInParams",
     "checkpoint_convergence",
@@ -190,12 +193,17 @@ def contact_at_load(
     method: str,
     realizations: int,
     seed: int,
+    p0: np.ndarray | None = None,
 ) -> dict[str, Any]:
     """Solve a periodic patch at one nominal pressure: stiffness per area, contact fraction.
 
     ``method = "bem"``: the periodic BEM
-    (:func:`tribolmp.models.contact.interfacial_stiffness`, contract C5),
-    which gives the area.
+    (:func:`~tribolmp.models.contact.bem.solve_bem`, the solver of contract C5's
+    ``interfacial_stiffness``: stiffness of the cell / its area), which gives the
+    area.  ``p0`` (a previous pressure field, e.g. the last checkpoint's) warm-starts
+    it, and it stops at a relative pressure change of ``BEM_TOL`` = 1e-8: the
+    stiffness and the area depend only on the converged contact set (measured
+    identical to tol 1e-10 on the default surface, 41 -> 14 iterations warm).
     ``method = "mdr"``: the MDR ensemble of 1D profiles with the patch's
     spectrum; no area (``area_fraction`` None), ``phi`` from
     :func:`~tribolmp.models.bridges.contact_fraction_estimate`.
@@ -209,14 +217,12 @@ def contact_at_load(
     t0 = time.perf_counter()
     patch = h.shape[0] * h.shape[1] * dx * dx
     grad = bridges.rms_gradient(h, dx)
+    p_field = None
     if method == "bem":
-        from .contact import interfacial_stiffness  # contract C5
+        from .contact.bem import solve_bem
 
-        r = interfacial_stiffness(h, dx, E_star, [pressure])
-        kpa, area = (
-            float(np.asarray(r["stiffness_per_area"])[0]),
-            float(np.asarray(r["area_fraction"])[0]),
-        )
+        r = solve_bem(h, dx, E_star, pressure, periodic=True, tol=BEM_TOL, p0=p0)
+        kpa, area, p_field = float(r.stiffness) / patch, float(r.area_fraction), r.p
         phi, src = area, "BEM real-contact fraction"
     elif method == "mdr":
         from .contact.solve import solve_rough
@@ -242,6 +248,7 @@ def contact_at_load(
         "phi": phi,
         "phi_source": src,
         "grad_rms": grad,
+        "p": p_field,
         "time_s": time.perf_counter() - t0,
     }
 
@@ -315,7 +322,11 @@ def running_in(
     area = params.apparent_area
     bound = bridges.punch_bound(area, params.E_star)
 
+    warm: dict[str, Any] = {"p": None}
+
     def record(hh):
+        # Each checkpoint's BEM starts from the previous checkpoint's pressure field (the surface
+        # changed little in between): the same converged contact, in fewer iterations.
         c = contact_at_load(
             hh,
             dx,
@@ -324,7 +335,9 @@ def running_in(
             method=params.contact_method,
             realizations=params.realizations,
             seed=params.contact_seed,
+            p0=warm["p"],
         )
+        warm["p"] = c.pop("p")
         c["k"] = bridges.apparent_contact_stiffness(c["k_per_area"], area, params.E_star)[
             "stiffness"
         ]
