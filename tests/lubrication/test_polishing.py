@@ -108,7 +108,7 @@ def test_params_from_scene():
         {"lubricant": {"viscosity": 0.3}, "polishing": {"pressure": 2e5, "velocity": 0.2}}
     )
     p = params_from_scene(scene, grid_points=16)
-    assert (p.viscosity, p.pressure, p.velocity, p.grid_points) == (0.3, 2e5, 0.2, 16)
+    assert (p.viscosity, p.pressure, p.sliding_velocity, p.grid_points) == (0.3, 2e5, 0.2, 16)
     assert p.E_star == pytest.approx(scene.effective_modulus)
 
 

@@ -304,7 +304,8 @@ def _polish(args) -> int:
         sq_final_m=float(res.sq[-1]),
         pixel_size_m=params.pixel_size,
         seed=seed,
-        params=params.__dict__,
+        # "velocity": the old name of sliding_velocity, kept for readers of this JSON
+        params={**params.__dict__, "velocity": params.sliding_velocity},
     )
     (out / "polish_summary.json").write_text(json.dumps(summary, indent=2, default=float))
     (out / "topography_final.json").write_text(

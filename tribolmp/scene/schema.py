@@ -261,6 +261,7 @@ class Lubricant(Section):
     )
 
 
+@renamed(velocity="sliding_velocity")  # the old key keeps working (docs/conventions.md)
 @dataclass(frozen=True)
 class Polishing(Section):
     """``[polishing]``: lubricated polishing with abrasive particles."""
@@ -283,7 +284,7 @@ class Polishing(Section):
     pressure: float = param(
         1e5, unit="Pa", lo=0.0, lo_open=True, hi=1e10, doc="Nominal polishing pressure."
     )
-    velocity: float = param(
+    sliding_velocity: float = param(
         0.5, unit="m/s", lo=0.0, lo_open=True, hi=1e3, doc="Relative sliding velocity."
     )
     duration: float = param(60.0, unit="s", lo=0.0, lo_open=True, hi=1e7, doc="Polishing time.")

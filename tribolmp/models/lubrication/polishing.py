@@ -89,7 +89,7 @@ class PolishParams:
         k in dh/dt = k p v (1/Pa).
     pressure : float
         Nominal pressure p (Pa).
-    velocity : float
+    sliding_velocity : float
         Sliding velocity v (m/s).
     duration : float
         Polishing time (s).
@@ -121,7 +121,7 @@ class PolishParams:
     particle_fraction: float = param(0.05, lo=0.0, hi=0.6, lo_open=True)
     archard_coefficient: float = param(1e-13, unit="1/Pa", lo=0.0, lo_open=True, hi=1e-3)
     pressure: float = param(1e5, unit="Pa", lo=0.0, lo_open=True, hi=1e10)
-    velocity: float = param(0.5, unit="m/s", lo=0.0, lo_open=True, hi=1e3)
+    sliding_velocity: float = param(0.5, unit="m/s", lo=0.0, lo_open=True, hi=1e3)
     duration: float = param(60.0, unit="s", lo=0.0, lo_open=True, hi=1e7)
     steps: int = param(100, lo=1, hi=10**6)
     viscosity: float = param(0.1, unit="Pa s", lo=0.0, lo_open=True, hi=1e9)
@@ -248,7 +248,7 @@ def polish(params: PolishParams, *, rng, h0=None, snapshots: int = 5) -> Result:
             raise ParameterError("h0", f"a finite ({n}, {n}) height map", getattr(h0, "shape", h0))
     load = p.pressure * p.area
     dt = p.duration / p.steps
-    t_r = p.pad_length / p.velocity
+    t_r = p.pad_length / p.sliding_velocity
     c_hertz = 4.0 / 3.0 * p.E_star * math.sqrt(a)
     res = Result(method="mean-field-pairlaw-archard")
     t = np.linspace(0.0, p.duration, p.steps + 1)
@@ -281,7 +281,7 @@ def polish(params: PolishParams, *, rng, h0=None, snapshots: int = 5) -> Result:
                 ts = squeeze_out_time(a, p.viscosity, F[loaded], p.film_thickness, p.film_cutoff)
                 f[loaded] = np.clip(1.0 - ts / t_r, 0.0, 1.0)
                 rate = (
-                    p.archard_coefficient * F * p.velocity * f / n
+                    p.archard_coefficient * F * p.sliding_velocity * f / n
                 )  # Archard volume rate per (line, pixel)
                 cut = np.zeros_like(h)
                 np.add.at(cut, (slice(None), j0), ((1.0 - ty) * rate).T / (dx * dx))
@@ -320,7 +320,7 @@ def polish(params: PolishParams, *, rng, h0=None, snapshots: int = 5) -> Result:
         volume_change=change,
         mass_balance_error=mb,
         removal_rate=float(removed[-1] / (p.area * p.duration)),
-        preston_rate=p.archard_coefficient * p.pressure * p.velocity,
+        preston_rate=p.archard_coefficient * p.pressure * p.sliding_velocity,
         contact_fraction=float(np.mean(fc[1:])),
         load_error=float(load_err[1:].max()),
         h=h,
@@ -395,7 +395,7 @@ def polish_resolved(params: PolishParams, *, rng, h0=None, positions: int | None
     M = n if positions is None else int(positions)
     load = p.pressure * p.area
     dt = p.duration / p.steps
-    t_r = p.pad_length / p.velocity
+    t_r = p.pad_length / p.sliding_velocity
     c_hertz = 4.0 / 3.0 * p.E_star * math.sqrt(a)
     t = np.linspace(0.0, p.duration, p.steps + 1)
     sq, removed, fc = np.zeros(p.steps + 1), np.zeros(p.steps + 1), np.zeros(p.steps + 1)
@@ -425,7 +425,7 @@ def polish_resolved(params: PolishParams, *, rng, h0=None, positions: int | None
                 ts = squeeze_out_time(a, p.viscosity, F[loaded], p.film_thickness, p.film_cutoff)
                 f[loaded] = np.clip(1.0 - ts / t_r, 0.0, 1.0)
                 rate = (
-                    p.archard_coefficient * F * p.velocity * f / M
+                    p.archard_coefficient * F * p.sliding_velocity * f / M
                 )  # volume rate per (move, particle)
                 cut = np.zeros_like(h)
                 for wgt, ii, jj in (((1 - tx) * (1 - ty), i0, J0), (tx * (1 - ty), i1, J0),
@@ -451,7 +451,7 @@ def polish_resolved(params: PolishParams, *, rng, h0=None, positions: int | None
         removed_volume=removed,
         h=h,
         removal_rate=float(removed[-1] / (p.area * p.duration)),
-        preston_rate=p.archard_coefficient * p.pressure * p.velocity,
+        preston_rate=p.archard_coefficient * p.pressure * p.sliding_velocity,
         contact_fraction=float(np.mean(fc[1:])),
         nit=nsub,
         positions=M,
@@ -485,7 +485,7 @@ def params_from_scene(scene, **overrides) -> PolishParams:
             particle_fraction=pol.particle_fraction,
             archard_coefficient=pol.archard_coefficient,
             pressure=pol.pressure,
-            velocity=pol.velocity,
+            sliding_velocity=pol.sliding_velocity,
             duration=pol.duration,
         )
     if scene.lubricant is not None:
