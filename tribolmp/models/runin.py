@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from ..scene.fields import param, validate_dataclass
+from ..params import param, validate_dataclass
 from . import bridges
 from .base import Result
 

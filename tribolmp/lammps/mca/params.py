@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ...errors import ParameterError
-from ...scene.fields import param, validate_dataclass
+from ...params import param, validate_dataclass
 from ...scene.schema import Material, Nanoscale
 from ..laws import get_law
 from ..mapping import MaterialSpec

@@ -50,8 +50,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ParameterError
+from ...params import param, validate_dataclass
 from ...rng import as_generator
-from ...scene.fields import param, validate_dataclass
 from ..base import Result, timed
 from .reference import damper_coefficient
 

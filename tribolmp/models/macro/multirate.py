@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...scene.fields import param, validate_dataclass
+from ...params import param, validate_dataclass
 from ..base import MethodRegistry, Result, timed
 
 __all__ = [

@@ -31,8 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import BlowUpError, ConvergenceError, ParameterError
+from ...params import param, validate_dataclass
 from ...progress import call_progress
-from ...scene.fields import param, validate_dataclass
 from ..base import MethodRegistry, Result, timed
 from .friction import ConstantFriction, FrictionLaw
 

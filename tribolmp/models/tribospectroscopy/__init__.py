@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ParameterError
-from ...scene.fields import param, validate_dataclass
+from ...params import param, validate_dataclass
 from ..base import MethodRegistry, Result, timed
 from .fit import MeasuredCurve, fit_length, read_curve_csv, write_curve_csv
 from .models import (
