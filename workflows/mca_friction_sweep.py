@@ -190,14 +190,15 @@ def append_campaign(path: Path, new: dict) -> None:
     tmp.replace(path)
 
 
-def nanoscale_table(campaign: Path, out: Path, *, description: str, law: str | None = None) -> dict:
-    """Write the table the chain interpolates.
+def nanoscale_table(campaign: Path, out: Path, *, description: str, law: str | None = None,
+                    dim: int = 2) -> dict:
+    """Write the table the chain interpolates (one law, one dimension).
 
     Built by :func:`tribolmp.analysis.nanoscale_table.build_table`.
     """
     from tribolmp.analysis.nanoscale_table import build_table, write_table
 
-    table = build_table(campaign, law=law or "mca", description=description)
+    table = build_table(campaign, law=law or "mca", description=description, dim=dim)
     write_table(table, out)
     return table
 
@@ -567,7 +568,7 @@ def main(argv=None) -> int:
     print(f"wrote {csv_path} and {md_path} in {time.perf_counter() - t_all:.0f} s")
     if args.table and campaign is not None and campaign.exists():
         nanoscale_table(campaign, Path(args.table), description=args.description,
-                        law=overrides.get("bond_style") or default_law)
+                        law=overrides.get("bond_style") or default_law, dim=args.dim)
         print(f"wrote {args.table}")
     if args.figures and campaign is not None and campaign.exists():
         for path in campaign_figures(campaign, Path(args.figures)):

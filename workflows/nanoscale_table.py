@@ -3,7 +3,7 @@
 Usage::
 
     python workflows/nanoscale_table.py [--campaign docs/data/mca_campaign.csv] [--law mca]
-        [--out tribolmp/data/nanoscale_table.json] [--check]
+        [--out tribolmp/data/nanoscale_table.json] [--dim 2] [--check]
 
 Groups one law's runs by (pressure, velocity), combines seeds
 (:func:`tribolmp.analysis.nanoscale_table.build_table`) and writes the JSON
@@ -20,8 +20,8 @@ import sys
 from pathlib import Path
 
 #: Provenance line of the shipped table (the campaign of issue 14, docs/mca_study.md).
-DESCRIPTION = ("reduced MCA study (issue 14), law mca, smoke box 50 nm x 2 x 15 nm, 2D, 20-30 ns; "
-               "docs/mca_study.md")
+DESCRIPTION = ("reduced MCA study (issue 14), law mca, smoke box 47.5 nm x 2 x 15 nm "
+               "(rotated upper body), 2D, 20 ns per run; docs/mca_study.md")
 
 
 def main(argv=None) -> int:
@@ -33,13 +33,14 @@ def main(argv=None) -> int:
     ap.add_argument("--campaign", default=str(root / "docs/data/mca_campaign.csv"),
                     help="campaign CSV")
     ap.add_argument("--law", default="mca", help="bond law whose runs make the table")
+    ap.add_argument("--dim", type=int, default=2, choices=(2, 3), help="dimension of the runs used")
     ap.add_argument("--description", default=DESCRIPTION, help="provenance line")
     ap.add_argument("--out", default=str(root / "tribolmp/data/nanoscale_table.json"),
                     help="output JSON")
     ap.add_argument("--check", action="store_true", help="compare with --out instead of writing it")
     args = ap.parse_args(argv)
     table = build_table(args.campaign, law=args.law, description=args.description,
-                        source_name="docs/data/mca_campaign.csv")
+                        source_name="docs/data/mca_campaign.csv", dim=args.dim)
     out = Path(args.out)
     if args.check:
         same = out.is_file() and json.loads(out.read_text()) == table

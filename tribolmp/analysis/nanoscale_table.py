@@ -12,7 +12,8 @@ the seeds and returns the table ``tribolmp/data/nanoscale_table.json`` ships::
 Combination per (P, V): the mean over seeds; its error the larger of the combined standard
 errors ``sqrt(sum err^2)/n`` and the seed scatter ``std/sqrt(n)`` (n > 1).  An Eq. 23
 coefficient is given only if the analysis marked it valid in every seed, else null with
-``<c>_valid: false``.  A table never mixes laws.  The output depends on the CSV only (its
+``<c>_valid: false``.  A table never mixes laws nor dimensions (a 3D run at a 2D condition is
+another experiment, not another seed).  The output depends on the CSV only (its
 SHA-256 is recorded, no creation time), so rebuilding it is a byte-for-byte check.
 
 Run ``python workflows/nanoscale_table.py`` to rebuild the shipped file.
@@ -55,7 +56,7 @@ def _number(text: str | None) -> float | None:
 
 
 def build_table(campaign: str | Path, *, law: str, description: str = "",
-                source_name: str | None = None) -> dict[str, Any]:
+                source_name: str | None = None, dim: int = 2) -> dict[str, Any]:
     """Return the nanoscale table of one law's runs in the campaign CSV.
 
     Parameters
@@ -68,6 +69,8 @@ def build_table(campaign: str | Path, *, law: str, description: str = "",
         One line for the provenance (box, durations, where the study is documented).
     source_name : str, optional
         How the provenance names the CSV (default: the path as given).
+    dim : {2, 3}
+        Dimension of the runs used (the CSV's ``dim`` column); rows of the other are skipped.
 
     Returns
     -------
@@ -76,14 +79,15 @@ def build_table(campaign: str | Path, *, law: str, description: str = "",
     """
     path = Path(campaign)
     raw = path.read_bytes()
-    rows = [r for r in csv.DictReader(raw.decode("utf-8").splitlines()) if r.get("law") == law]
+    rows = [r for r in csv.DictReader(raw.decode("utf-8").splitlines())
+            if r.get("law") == law and r.get("dim") == str(dim)]
     groups: dict[tuple[float, float], list[dict]] = {}
     for r in rows:
         if _number(r.get("mu")) is None:
             continue
         groups.setdefault((float(r["pressure_Pa"]), float(r["sliding_velocity_m_s"])), []).append(r)
     if not groups:
-        raise ValueError(f"{path}: no finished run of law {law!r}")
+        raise ValueError(f"{path}: no finished {dim}D run of law {law!r}")
     table_rows = []
     for (p, v), rs in sorted(groups.items()):
         mu, mu_err = _combine([float(r["mu"]) for r in rs],
