@@ -102,6 +102,16 @@ def test_meta_contract_and_errors(tmp_path):
     assert m3.lateral_axes == (0, 2)
 
 
+def test_meta_of_a_running_job_reads(tmp_path):
+    """Check a running job's meta.json (no throughput yet; the units block only names it)."""
+    _write(tmp_path, _frames())
+    raw = json.loads((tmp_path / "meta.json").read_text())
+    raw.pop("atom_steps_per_s", None)
+    raw["units"] = {"atom_steps_per_s": "1/s", "dt_s": "s"}
+    meta = MCAMeta.from_dict(raw)
+    assert meta.atom_steps_per_s is None and meta.dt_s == pytest.approx(2e-14)
+
+
 def test_missing_dump_column_is_a_one_line_error(tmp_path):
     _write(tmp_path, _frames())
     text = (tmp_path / "traj.lammpstrj").read_text().replace(" c_nbond", " c_other")

@@ -98,9 +98,10 @@ def _lookup(raw: Mapping[str, Any], key: str) -> Any:
     for alias in _META_KEYS[key]:
         if alias in raw:
             return raw[alias]
-    # nested sections such as {"run": {...}} or {"material": {...}}
-    for value in raw.values():
-        if isinstance(value, Mapping):
+    # nested sections such as {"run": {...}} or {"material": {...}}; never the "units" block,
+    # which maps every field (also one a running job has not written yet) to its unit string
+    for section, value in raw.items():
+        if isinstance(value, Mapping) and section != "units":
             for alias in _META_KEYS[key]:
                 if alias in value:
                     return value[alias]
