@@ -123,21 +123,19 @@ def test_running_in_records_the_contract_and_the_bound():
     assert np.median(r.psd[-1] / r.psd_theory[-1]) == pytest.approx(1.0, rel=0.05)
 
 
-@pytest.mark.slow
-def test_bem_checkpoints_give_the_area_and_converge():
-    """BEM at every checkpoint: the area is reported, calibrates phi, the stiffness is bounded."""
+def _bem_case(n, *, duration):
+    """Surface (n^2 at 2 um, 64 um roll-off), PARTIAL rates and BEM running-in parameters."""
     h, dx, _ = runin.part_surface(
         rms_height=0.5e-6,
         hurst=0.8,
         rolloff_wavelength=64e-6,
         short_cutoff_wavelength=8e-6,
-        grid_points=64,
+        grid_points=n,
         pixel_size=2e-6,
         rng=np.random.default_rng(5),
     )
-    eq = bridges.eq23_from_rates(PARTIAL)
     p = runin.RunInParams(
-        duration=0.05,
+        duration=duration,
         sliding_velocity=0.01,
         normal_force=10.0,
         apparent_area=1e-6,
@@ -145,6 +143,13 @@ def test_bem_checkpoints_give_the_area_and_converge():
         checkpoints=4,
         contact_method="bem",
     )
+    return h, dx, bridges.eq23_from_rates(PARTIAL), p
+
+
+@pytest.mark.slow
+def test_bem_checkpoints_give_the_area_and_converge():
+    """BEM at every checkpoint: the area is reported, calibrates phi, the stiffness is bounded."""
+    h, dx, eq, p = _bem_case(64, duration=0.05)
     c = runin.checkpoint_convergence(h, dx, eq, p, seed=3)
     assert all(a is not None and 0 < a <= 1 for a in c.coarse.real_area_fraction)
     assert c.coarse.phi[0] == c.coarse.real_area_fraction[0]
@@ -164,25 +169,7 @@ def test_bem_coupled_loop_converges_in_the_checkpoint_spacing():
     on the 64^2 map of the test above (12 contact pixels) moves the final Rq by 5.9 % and 6.3 %:
     the quantized BEM area, not the coupling scheme, is what did not converge (docs/chain.md).
     """
-    h, dx, _ = runin.part_surface(
-        rms_height=0.5e-6,
-        hurst=0.8,
-        rolloff_wavelength=64e-6,
-        short_cutoff_wavelength=8e-6,
-        grid_points=128,
-        pixel_size=2e-6,
-        rng=np.random.default_rng(5),
-    )
-    eq = bridges.eq23_from_rates(PARTIAL)
-    p = runin.RunInParams(
-        duration=0.035,
-        sliding_velocity=0.01,
-        normal_force=10.0,
-        apparent_area=1e-6,
-        E_star=E_STEEL,
-        checkpoints=4,
-        contact_method="bem",
-    )
+    h, dx, eq, p = _bem_case(128, duration=0.035)
     first = runin.checkpoint_convergence(h, dx, eq, p, seed=3)
     second = runin.checkpoint_convergence(
         h, dx, eq, replace(p, checkpoints=8), seed=3, coarse=first.fine
