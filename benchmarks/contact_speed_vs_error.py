@@ -166,13 +166,30 @@ def _tamaas_solve(tm, h, dx, E, P, tol):
     return t, p, float(np.mean(u - h)) + c
 
 
-def tamaas_table(quick: bool) -> list[dict]:
+def _load_baseline(path: str):
+    """Load another version of ``bem.py`` (e.g. ``git show REV:tribolmp/models/contact/bem.py``).
+
+    It is imported as a sibling of the package's module so that its relative imports resolve;
+    the package's own ``bem`` is untouched.
+    """
+    import importlib.util
+
+    import tribolmp.models.contact as pkg
+
+    spec = importlib.util.spec_from_file_location(f"{pkg.__name__}._baseline_bem", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def tamaas_table(quick: bool, baseline: str | None = None) -> list[dict]:
     """Our periodic BEM against tamaas on the reference surfaces: stiffness and wall time.
 
     Both solvers run alternately (best of ``repeats`` each, the machine is shared), at the
     same surface and load.  Stiffness: ours from the tangent solve (what ``solve_bem``
     returns), tamaas's by the finite difference of its mean gap between p and p (1 + 1e-3);
     "time for stiffness" is ours (one solve incl. the tangent solve) against tamaas's two solves.
+    ``baseline``: path of another ``bem.py``, timed in the same loop (before/after columns).
     """
     from tribolmp.models.contact.bem import solve_bem
 
@@ -184,6 +201,7 @@ def tamaas_table(quick: bool) -> list[dict]:
     tm.set_log_level(tm.LogLevel.error)
     cr, refs = _references()
     n = 256 if quick else 512
+    base = _load_baseline(baseline) if baseline else None
     names = [k for k in ("H0.8-rolloff", "H0.5-selfaffine", "wavy+H0.8") if k in refs["classes"]][
         : 1 if quick else 3
     ]
@@ -199,13 +217,17 @@ def tamaas_table(quick: bool) -> list[dict]:
         for j in [j for j in (0, 3) if ok[j]]:
             p = float(P[j])
             L2 = (n * dx) ** 2
-            t_tm, t_tm2, t_ours = [], [], []
+            t_tm, t_tm2, t_ours, t_base = [], [], [], []
             for _ in range(repeats):
                 t1, p_tm, g1 = _tamaas_solve(tm, h, dx, cr.E_STAR, p, 1e-12)
                 t2, _, g2 = _tamaas_solve(tm, h, dx, cr.E_STAR, p * (1 + eps), 1e-12)
                 t0 = time.perf_counter()
                 ours = solve_bem(h, dx, cr.E_STAR, p, periodic=True, tol=1e-10)
                 t_ours.append(time.perf_counter() - t0)
+                if base is not None:
+                    t0 = time.perf_counter()
+                    old = base.solve_bem(h, dx, cr.E_STAR, p, periodic=True, tol=1e-10)
+                    t_base.append(time.perf_counter() - t0)
                 t_tm.append(t1)
                 t_tm2.append(t1 + t2)
             k_tm = eps * p * L2 / (g1 - g2)
@@ -241,6 +263,13 @@ def tamaas_table(quick: bool) -> list[dict]:
                     max_pressure_diff=float(np.max(np.abs(ours.p - p_tm)) / np.max(p_tm)),
                 )
             )
+            if base is not None:
+                rows[-1].update(
+                    baseline_time_s=min(t_base),
+                    baseline_nit_stiffness=old.nit_stiffness,
+                    baseline_time_ratio_for_stiffness=min(t_base) / min(t_tm2),
+                    baseline_stiffness_rel_diff=old.stiffness / k_tm - 1,
+                )
             print(
                 f"  tamaas {name} p/(E*h')={cls['reduced_pressures'][j]:g}: "
                 f"ours {min(t_ours):.2f} s vs tamaas {min(t_tm):.2f} s "
@@ -395,6 +424,13 @@ def main(argv=None) -> int:
     ap.add_argument(
         "--skip", default="", help="comma list of tables to skip: axisymmetric,tamaas,rough"
     )
+    ap.add_argument(
+        "--baseline-bem",
+        default=None,
+        metavar="FILE",
+        help="another bem.py (e.g. `git show REV:tribolmp/models/contact/bem.py > FILE`), timed "
+        "side by side with the current one in the tamaas table",
+    )
     args = ap.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -406,7 +442,7 @@ def main(argv=None) -> int:
         write_csv(out / f"contact_speed_vs_error{suffix}.csv", rows)
         _plot(rows, out / f"contact_speed_vs_error{suffix}.png")
     if "tamaas" not in skip:
-        rows = tamaas_table(args.quick)
+        rows = tamaas_table(args.quick, args.baseline_bem)
         print_table("BEM against tamaas (periodic rough surface)", rows)
         write_csv(out / f"contact_bem_vs_tamaas{suffix}.csv", rows)
     if "rough" not in skip:
