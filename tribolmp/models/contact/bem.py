@@ -269,7 +269,11 @@ def solve_bem(
         np.multiply(g, Sf, out=gS)
         G = _dot(gS, gS, tmp)
         if delta:
+            # conjugate direction on the current contact set only (Polonsky-Keer: t = 0 off
+            # I_g); a direction left on pixels that dropped out would push them below zero
+            # at every step, and each such clip costs a displacement FFT
             t *= delta * G / G_old
+            t *= Sf
             t += gS
         else:
             np.copyto(t, gS)
