@@ -1,12 +1,13 @@
 """Incommensurate bodies (issue 13 item 4): mu(t) has no spectral line at V/d.
 
 With both bodies on one lattice in one orientation (``body_texture="aligned"``, the old setup)
-every asperity slides over the same rows in phase, and mu(t) is a washboard at the frequency V/d
-(band/flank power ratio 19-100 at the default scene's size).  With polycrystalline bodies
-(grains of randomly oriented lattices in both bodies, drawn from the run's Generator) each
-contact sees its own row period and the line disappears.  The 2D default (``auto`` = rotated:
-the upper body turned by 90 degrees) weakens it to ~3 (documented in docs/mca.md, not asserted
-here as "no line").
+and the brittle bpm law, every asperity slides over the same rows in phase, and mu(t) is a
+washboard at the frequency V/d (band/flank power ratio 19-100 at the default scene's size).
+With polycrystalline bodies (grains of randomly oriented lattices in both bodies, drawn from
+the run's Generator) each contact sees its own row period and the line disappears.  The
+default (the mca law, the upper body turned by 90 degrees) has no line either, in the mean
+periodogram of three seeds (docs/mca.md gives every texture's measured ratios: with the mca law
+the interface disorders within about a nanosecond, and even aligned lattices lose the line).
 """
 
 from __future__ import annotations
@@ -20,22 +21,30 @@ from tribolmp.scene import default_scene
 pytestmark = [pytest.mark.lammps, pytest.mark.slow]
 
 
-def washboard_ratio(out, *, t0: float, velocity: float, d: float) -> float:
-    """Mean periodogram of mu(t) within 15 % of V/d over its flanks (0.55-0.8, 1.2-1.45 V/d).
-
-    About 1 for a spectrum without a line at V/d (a red spectrum gives somewhat less); a
-    washboard puts most of the variance of mu(t) into the band.
-    """
+def _mu_periodogram(out, *, t0: float, velocity: float, d: float):
+    """(frequency / (V/d), Hann-windowed periodogram) of the detrended mu(t) after ``t0``."""
     fr = np.loadtxt(out / "friction.csv", delimiter=",", skiprows=1)
     t, f, n = fr[:, 0], fr[:, 1], fr[:, 2]
     sel = t > t0  # after the first contact transient
     mu = f[sel] / n[sel].mean()
     mu = mu - np.polyval(np.polyfit(t[sel], mu, 1), t[sel])
     ps = np.abs(np.fft.rfft(mu * np.hanning(len(mu)))) ** 2
-    r = np.fft.rfftfreq(len(mu), t[1] - t[0]) / (velocity / d)
+    return np.fft.rfftfreq(len(mu), t[1] - t[0]) / (velocity / d), ps
+
+
+def _band_ratio(r, ps) -> float:
     band = (r >= 0.85) & (r <= 1.15)
     flank = ((r >= 0.55) & (r < 0.8)) | ((r > 1.2) & (r <= 1.45))
     return float(ps[band].mean() / ps[flank].mean())
+
+
+def washboard_ratio(out, *, t0: float, velocity: float, d: float) -> float:
+    """Mean periodogram of mu(t) within 15 % of V/d over its flanks (0.55-0.8, 1.2-1.45 V/d).
+
+    About 1 for a spectrum without a line at V/d (a red spectrum gives somewhat less); a
+    washboard puts most of the variance of mu(t) into the band.
+    """
+    return _band_ratio(*_mu_periodogram(out, t0=t0, velocity=velocity, d=d))
 
 
 @pytest.mark.parametrize("texture", ["polycrystalline", "aligned"])
@@ -60,3 +69,28 @@ def test_no_washboard_line_at_v_over_d(texture, tmp_path, monkeypatch, lammps_av
         # the documented contrast, i.e. the old single-orientation setup the first case fails on:
         # measured 100 (seed 7) and 19 (seed 3)
         assert ratio > 10.0, ratio
+
+
+def test_default_bodies_and_law_have_no_washboard_line(tmp_path, monkeypatch, lammps_available):
+    """The default setup (mca law, auto texture), periodograms of three seeds pooled.
+
+    One 5 ns periodogram has 2-3 bins in the band, so a single seed scatters widely (measured
+    single-seed ratios 0.4-4.9, docs/mca.md); the mean periodogram of three seeds is the
+    estimate, and it is compared with the same threshold as above.
+    """
+    from tribolmp.lammps.mca import driver
+
+    monkeypatch.setattr(driver, "compute_rates_if_available", lambda out: None)
+    params = params_from_scene(default_scene()).replace(duration=5e-9)
+    assert params.bond_style == "mca" and params.body_texture == "auto"
+    spectra = []
+    for seed in (7, 3, 5):
+        out = tmp_path / f"s{seed}"
+        run_mca(params, out, seed=seed)
+        spectra.append(_mu_periodogram(out, t0=1e-9, velocity=params.sliding_velocity,
+                                       d=params.automaton_diameter))
+    n = min(len(ps) for _, ps in spectra)
+    ratio = _band_ratio(spectra[0][0][:n], np.mean([ps[:n] for _, ps in spectra], axis=0))
+    # measured 0.85 (rotated, the 2D default); the bpm law's aligned lattice gives 19-100
+    # (the contrast test above), so < 2 separates "no line" from a washboard by 10x
+    assert ratio < 2.0, ratio

@@ -218,6 +218,83 @@ def _poly_block(lx: float, height: float, d: float, grain_size: float, rng: np.r
     return Atoms(f"H{len(pos)}", positions=pos, cell=[lx, height, d], pbc=[True, False, True])
 
 
+#: Orientations of the ``tilted`` texture (degrees of the lattice's close-packed rows against
+#: x; each within 2 degrees, the windows apart so the bodies never share a lattice vector).
+#: The upper body is mirrored when it is turned face down (angle -> -angle), so the bodies
+#: meet about 30 degrees apart, the largest misorientation of two hexagonal lattices; neither
+#: angle is a low-index direction (0 or 30 degrees), so neither surface repeats after d.
+TILT_DEG = (12.0, 19.0)
+
+
+def _tilted_fit(nx: int, d: float) -> tuple[float, tuple[int, int], tuple[int, int]]:
+    """(box length, (m, n) of the lower body, (m, n) of the upper body) for the ``tilted`` texture.
+
+    A hexagonal lattice (vectors d (1, 0), d (1/2, sqrt(3)/2)) turned so that its lattice vector
+    t = m a1 + n a2 lies along x is periodic along x with period |t| = d sqrt(m^2 + mn + n^2);
+    its rows then make the angle atan2(n sqrt(3)/2, m + n/2) with x.  Candidates for each body
+    are the primitive vectors within 2 degrees of its angle in :data:`TILT_DEG` and with |t|
+    within 4 spacings of ``nx`` d; of the (lower, upper) pairs whose lengths agree within 1 %,
+    the one nearest the requested length is taken (the upper body is stretched along x by the
+    mismatch, and its links take the stretched length as their rest length).
+    """
+    def candidates(target):
+        out = []
+        for m in range(1, nx + 6):
+            for n in range(0, nx + 6):
+                length = math.sqrt(m * m + m * n + n * n)
+                if abs(length - nx) > 4 or math.gcd(m, n) != 1:
+                    continue
+                ang = math.degrees(math.atan2(n * math.sqrt(3.0) / 2.0, m + 0.5 * n))
+                if abs(ang - target) <= 2.0:
+                    out.append((length, (m, n)))
+        return out
+
+    lo, up = candidates(TILT_DEG[0]), candidates(TILT_DEG[1])
+    if not lo or not up:
+        raise ParameterError(
+            "box_length", "at least 16 automaton diameters for body_texture tilted", nx * d
+        )
+    # of the pairs that fit each other within 1 %, the box nearest the requested length
+    fits = [
+        (abs(a - nx), abs(a / b - 1.0), a, mn_a, mn_b)
+        for a, mn_a in lo
+        for b, mn_b in up
+        if abs(a / b - 1.0) < 0.01
+    ]
+    if not fits:
+        raise ParameterError(
+            "box_length", "a length where both tilted lattices fit within 1 %", nx * d
+        )
+    _, _, length, mn_lo, mn_up = min(fits)
+    return length * d, mn_lo, mn_up
+
+
+def _tilted_block(mn: tuple[int, int], lx: float, height: float, d: float):
+    """ASE Atoms of a hexagonal block whose lattice vector m a1 + n a2 lies along x, period ``lx``.
+
+    The lattice points with 0 <= x < |t| and 0 <= y < height are exactly one period of the
+    turned crystal (t maps the lattice onto itself); x is then scaled from |t| to ``lx``.
+    """
+    from ase import Atoms
+
+    m, n = mn
+    t = np.array([m + 0.5 * n, math.sqrt(3.0) / 2.0 * n]) * d
+    period = float(np.hypot(*t))
+    c, s_ = t / period
+    rot = np.array([[c, -s_], [s_, c]])  # turns t onto +x (row vectors: p @ rot)
+    reach = int(math.ceil((period + height) / d)) + 2
+    i, j = np.meshgrid(np.arange(-2 * reach, 2 * reach + 1), np.arange(-2 * reach, 2 * reach + 1),
+                       indexing="ij")
+    base = np.column_stack([(i + 0.5 * j).ravel(), (math.sqrt(3.0) / 2.0 * j).ravel()]) * d
+    p = base @ rot
+    tol = 1e-9 * d
+    keep = (p[:, 0] >= -tol) & (p[:, 0] < period - tol) & (p[:, 1] >= -tol) & (p[:, 1] < height)
+    p = p[keep]
+    p[:, 0] = np.clip(p[:, 0], 0.0, None) * (lx / period)
+    pos = np.column_stack([p, np.zeros(len(p))])
+    return Atoms(f"H{len(pos)}", positions=pos, cell=[lx, height, d], pbc=[True, False, True])
+
+
 def _hex_columns(ncol: int, height: float, d: float, lx: float):
     """ASE Atoms of a hexagonal block turned by 90 deg: close-packed columns along y.
 
@@ -286,7 +363,7 @@ def build_system(
     contact_fraction : float
         Fraction of surface columns (bins of width d) initially in contact;
         0 places the highest asperities just touching.
-    texture : {"aligned", "rotated"}
+    texture : {"aligned", "rotated", "tilted", "polycrystalline"}
         ``aligned``: both bodies with close-packed rows along x (the lower
         body's surface period d is the upper body's: sliding is a washboard
         at frequency V/d).  ``rotated`` (2D): the upper body's lattice turned
@@ -300,7 +377,12 @@ def build_system(
         randomly oriented lattices, seeds and angles drawn from ``rng`` after
         the surface profiles; atoms of two grains closer than 0.8 d are
         thinned out at the boundaries.  Every contact then sees its own row
-        period, so sliding has no common washboard frequency.
+        period, so sliding has no common washboard frequency.  ``tilted`` (2D):
+        both bodies single crystals, their close-packed rows at about 12 and 19
+        deg to x (:data:`TILT_DEG`); the upper one is mirrored face down, so the
+        bodies meet about 30 deg apart and neither surface repeats after d.  Each lattice is
+        periodic along x through a lattice vector of length close to ``length``
+        (the upper body stretched along x by below 1 %, stress-free).
     grain_size : float, optional
         Mean grain size (nm) for ``polycrystalline`` (default 4 d).
 
@@ -312,8 +394,8 @@ def build_system(
         raise ParameterError("dim", "2 or 3", dim)
     if not (0.0 < hurst <= 1.0):
         raise ParameterError("hurst", "a number in (0, 1]", hurst)
-    if texture not in ("aligned", "rotated", "polycrystalline"):
-        raise ParameterError("body_texture", "aligned, rotated or polycrystalline", texture)
+    if texture not in ("aligned", "rotated", "tilted", "polycrystalline"):
+        raise ParameterError("body_texture", "aligned, rotated, tilted or polycrystalline", texture)
     if texture != "aligned" and dim != 2:
         raise ParameterError("body_texture", "aligned in 3D (textured bodies are 2D only)", texture)
     if dim == 2:
@@ -322,11 +404,15 @@ def build_system(
         if texture == "rotated":
             nx, ncol = _rotated_fit(nx)
         lower, dy = _hex_block(nx, nrows + RIGID_ROWS, d)
+        lx, lz = nx * d, d
         if texture == "rotated":
             upper = _hex_columns(ncol, (nrows + RIGID_ROWS) * dy, d, nx * d)
+        elif texture == "tilted":
+            lx, mn_lo, mn_up = _tilted_fit(nx, d)
+            lower = _tilted_block(mn_lo, lx, (nrows + RIGID_ROWS) * dy, d)
+            upper = _tilted_block(mn_up, lx, (nrows + RIGID_ROWS) * dy, d)
         else:
             upper, _ = _hex_block(nx, nrows + RIGID_ROWS, d)
-        lx, lz = nx * d, d
         nsurf: int | tuple[int, int] = 4 * nx
         nz = 1
     else:

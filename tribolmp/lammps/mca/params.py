@@ -55,8 +55,10 @@ class MCAParams:
     hurst: float = param(0.8, lo=0.0, hi=1.0, lo_open=True, doc="Hurst exponent of the surfaces.")
     body_texture: str = param(
         "auto",
-        choices=("auto", "aligned", "rotated", "polycrystalline"),
-        doc="Lattices of the two bodies: rotated (2D: the upper body turned by 90 deg, washboard "
+        choices=("auto", "aligned", "rotated", "tilted", "polycrystalline"),
+        doc="Lattices of the two bodies: tilted (2D: both bodies single crystals with their rows "
+        "at about 12 and 19 deg to the sliding direction, meeting 30 deg apart, so neither surface "
+        "repeats after d), rotated (2D: the upper body turned by 90 deg, washboard "
         "at V/d 6-30x weaker), polycrystalline (2D: both bodies of randomly oriented grains, no "
         "washboard, but weak grain boundaries that compact under load), aligned (one orientation, "
         "the old commensurate setup), auto (rotated in 2D, aligned in 3D).",
@@ -140,7 +142,7 @@ class MCAParams:
                 f"a value <= body_height/4 ({self.body_height / 4:g} m)",
                 self.roughness_rms,
             )
-        if self.body_texture in ("rotated", "polycrystalline") and self.dim == 3:
+        if self.body_texture in ("rotated", "tilted", "polycrystalline") and self.dim == 3:
             raise ParameterError(
                 "body_texture",
                 "aligned or auto in 3D (textured bodies are 2D only)",
