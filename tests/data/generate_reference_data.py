@@ -11,8 +11,9 @@ Names:
   ``contact-light:CLASS`` runs a class with 256^2 maps, for a crowded machine),
   then the summary ``contact-summary`` (no new solves): the MDR ratio table
   (``tests/data/contact_ratio_table.md``) and the planner's speed-error table
-  ``tribolmp/data/contact_speed_error.json``.  Run it with ``nice -n 10``: about
-  2-4 minutes of CPU per class on a shared 2-core machine.
+  ``tribolmp/data/contact_speed_error.json``.  Run it with ``nice -n 10``: one class
+  at 512^2 took 11-12 min of wall time on the shared 2-core machine (load 5-7), most of it the
+  rigid-punch BEM (zero-padded 1024^2 FFTs).
 
 Default: all.  Run it after a deliberate change of a generator or a solver, and commit the result.
 """
