@@ -157,8 +157,11 @@ def _choose(rates, table, **running_in):
     params = runin.RunInParams(normal_force=10.0, apparent_area=1e-6,
                                E_star=scene.effective_modulus)
     rows = None if table is None else table["rows"]
+    # the precedence mechanics: MCA profiles taken long enough (1 mm) to cover the part's band
+    # (the band rule itself is tests/runin/test_band.py)
     eq, friction, provenance, _ = part_coefficients(scene, rates, rates.source, rows, h0, 2e-6,
-                                                    params, 2.5e-9)
+                                                    params, 2.5e-9, run_length=1e-3,
+                                                    table_length=1e-3)
     return eq, provenance(friction(0.01))
 
 

@@ -111,10 +111,15 @@ def build_table(campaign: str | Path, *, law: str, description: str = "",
                 errs = [_number(r.get(f"{c}_err")) or 0.0 for r in rs]
                 tr[c], tr[f"{c}_err"] = _combine(vals, errs)
         table_rows.append(tr)
+    # the MCA profiles' length bounds the wavelengths the Eq. 23 rows measured (the chain uses
+    # them only for a part whose map resolves such a wavelength); the shortest box is stated
+    lengths = [_number(r.get("box_length_m")) for rs in groups.values() for r in rs]
+    lengths = [x for x in lengths if x is not None and x > 0]
     return {
         "rows": table_rows,
         "units": dict(_UNITS),
         "provenance": {
+            "profile_length_m": min(lengths) if lengths else None,
             "source": source_name or str(campaign),
             "source_sha256": hashlib.sha256(raw).hexdigest(),
             "description": description,

@@ -45,6 +45,8 @@ __all__ = [
     "friction_at_part",
     "interfacial_stiffness_per_area",
     "load_nanoscale_table",
+    "mca_band_applies",
+    "nanoscale_table_profile_length",
     "punch_bound",
     "rates_at_part",
     "rms_gradient",
@@ -535,6 +537,65 @@ def load_nanoscale_table(path: str | Path) -> list[dict[str, Any]]:
             )
         out.append(dict(r, pressure_Pa=p, sliding_velocity_m_s=v, mu=m))
     return out
+
+
+def nanoscale_table_profile_length(path: str | Path) -> float | None:
+    """Return the length (m) of the MCA profiles the table's Eq. 23 rows were measured on.
+
+    Read from ``provenance.profile_length_m``; None when the table does not state it.
+    """
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+        value = float(data["provenance"]["profile_length_m"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    return value if math.isfinite(value) and value > 0 else None
+
+
+def mca_band_applies(pixel_size: float, profile_length: float | None) -> Result:
+    """Decide whether Eq. 23 coefficients measured on an MCA profile apply to a part's surface.
+
+    The MCA measures the relaxation rate and the noise of the Fourier modes of its own surface
+    profile: wavelengths from two automata up to the profile length ``profile_length`` (the
+    MCA box).  The part's height map resolves wavelengths from ``2 pixel_size`` up to its side.
+    When the part's shortest resolved wavelength is longer than the MCA's longest measured
+    one, no mode of the part was measured: Eq. 23's mu (a relaxation rate of every mode, the
+    same at every k) would be extrapolated from nanometre modes to micrometre ones, where it
+    is not a measurement (a profile relaxation the MCA sees within ~1 ns of sliding would
+    flatten a micrometre surface within the first interval).  Such coefficients are therefore
+    not used for the part; the caller falls back to the next tier of its precedence and says
+    why.  With an overlap they are used for all of the part's modes, an extrapolation to its
+    longer wavelengths that the caller flags.
+
+    Parameters
+    ----------
+    pixel_size : float
+        Pixel of the part's height map (m).
+    profile_length : float or None
+        Length of the MCA profile the coefficients come from (m); None: not stated.
+
+    Returns
+    -------
+    Result
+        ``applies`` (bool), ``reason`` (str), ``part_shortest_wavelength_m``,
+        ``mca_longest_wavelength_m``.
+    """
+    lam_part = 2.0 * float(pixel_size)
+    if profile_length is None:
+        ok, why = False, "the MCA profile length they were measured on is not stated"
+    elif lam_part > profile_length:
+        ok, why = False, (
+            f"the MCA measured wavelengths up to {profile_length:.3g} m, the part's surface "
+            f"resolves none below {lam_part:.3g} m (no common mode)"
+        )
+    else:
+        ok, why = True, (
+            f"the MCA's wavelengths (up to {profile_length:.3g} m) overlap the part's (from "
+            f"{lam_part:.3g} m); used for all of the part's modes (extrapolated to its longer "
+            "wavelengths)"
+        )
+    return Result(applies=ok, reason=why, part_shortest_wavelength_m=lam_part,
+                  mca_longest_wavelength_m=profile_length)
 
 
 def table_at_part(

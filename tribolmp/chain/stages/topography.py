@@ -5,6 +5,8 @@ The stochastic surface equation (Eq. 23) with the chain's rates -> height map.
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from ...jsonio import scalars
@@ -477,7 +479,14 @@ def _coefficient_provenance(
     return out
 
 
-def part_coefficients(scene, rates, rates_src: str, table, h0, dx: float, params, slab: float):
+#: Fields of a Rates record that feed Eq. 23 (the C1 coefficients and the legacy rates the
+#: block picture maps to them); all are measurements on the MCA's own profile.
+_MCA_EQ23_FIELDS = ("mu_per_s", "d0_m2_s", "dz", "dx_l2", "wear_rate", "diffusion_m2_s",
+                    "transfer_rate", "detachment_rate", "reattachment_rate")
+
+
+def part_coefficients(scene, rates, rates_src: str, table, h0, dx: float, params, slab: float,
+                      *, run_length: float | None = None, table_length: float | None = None):
     """Choose every coefficient of the running-in at the part, by the precedence of issue 15.
 
     Per coefficient: the scene's ``[rates]`` (``rates_src == "[rates]"``) > this run's valid
@@ -487,6 +496,12 @@ def part_coefficients(scene, rates, rates_src: str, table, h0, dx: float, params
     the ``[topography]`` values.  mu_k: ``[running_in].mu_kinetic`` > the rates' mu > the table >
     ``[load]``; mu_s: ``[running_in].mu_static`` > the rates' > the table's measured mu_s/mu_k x
     mu_k > the stated ``static_ratio``.
+
+    The Eq. 23 coefficients measured on an MCA profile (this run's, of length ``run_length``;
+    the table's, of length ``table_length``, both in m) are used only when the part's map
+    resolves a wavelength the MCA measured (:func:`tribolmp.models.bridges.mca_band_applies`);
+    otherwise that tier is skipped, and ``eq.warnings`` and the provenance say why.  The scene's
+    ``[rates]`` are the user's statement for the part and are always used.
 
     Returns
     -------
@@ -517,10 +532,27 @@ def part_coefficients(scene, rates, rates_src: str, table, h0, dx: float, params
         if ri.friction_pressure == "nominal"
         else params.pressure / max(phi0, 1e-300)
     )
-    eq23_table, table_hits = _eq23_from_table(table, p_match, v_part, rates.sliding_velocity_m_s)
-    eq = bridges.eq23_from_rates(
-        rates, table=eq23_table, fallback=_fallback_from_topography(scene, slab)
+    not_used: dict[str, str] = {}
+    rates_eq = rates
+    if rates_src != "[rates]":
+        band = bridges.mca_band_applies(dx, run_length)
+        if not band.applies and any(getattr(rates, f) is not None for f in _MCA_EQ23_FIELDS):
+            rates_eq = dataclasses.replace(rates, **dict.fromkeys(_MCA_EQ23_FIELDS))
+            not_used[rates_tier] = band.reason
+    table_eq = table
+    if table:
+        band = bridges.mca_band_applies(dx, table_length)
+        if not band.applies:
+            table_eq = None
+            not_used["nanoscale table"] = band.reason
+    eq23_table, table_hits = _eq23_from_table(
+        table_eq, p_match, v_part, rates.sliding_velocity_m_s
     )
+    eq = bridges.eq23_from_rates(
+        rates_eq, table=eq23_table, fallback=_fallback_from_topography(scene, slab)
+    )
+    for tier, why in not_used.items():
+        eq.warnings.append(f"Eq. 23 coefficients of the {tier} not used at the part: {why}")
     rates_mu = rates.mu if rates.mu is not None and "mu" not in rates.flagged else None
     if rates_mu is not None:
         rows = [
@@ -566,7 +598,11 @@ def part_coefficients(scene, rates, rates_src: str, table, h0, dx: float, params
         )
 
     def provenance(fr) -> dict:
-        return _coefficient_provenance(eq, rates_tier, table_hits, fr, mu_tier, ri, rates)
+        out = _coefficient_provenance(eq, rates_tier, table_hits, fr, mu_tier, ri, rates)
+        for key in bridges.C1_FIELDS:
+            if not_used:
+                out[key]["not_used"] = dict(not_used)
+        return out
 
     return eq, friction, provenance, fr_src
 
@@ -631,8 +667,12 @@ def _running_in(ctx: StageContext) -> StageOutput:
         realizations=rough.realizations, contact_seed=seed, phi_tolerance=ri.phi_tolerance)
     table_path = data_path("nanoscale_table.json")
     table = bridges.load_nanoscale_table(table_path) if table_path.is_file() else None
+    table_length = bridges.nanoscale_table_profile_length(table_path) if table else None
+    # this run's MCA profile spans its periodic box
+    run_length = scene.nanoscale.box_length if scene.nanoscale is not None else None
     eq, friction, provenance, fr_src = part_coefficients(
-        scene, rates, rates_src, table, h0, dx, params, float(slab)
+        scene, rates, rates_src, table, h0, dx, params, float(slab),
+        run_length=run_length, table_length=table_length,
     )
 
     res = runin.running_in(
