@@ -35,6 +35,13 @@ def _draw_stick_slip(ax, result, run) -> None:
 _SECTIONS = ("kinematics", "load", "geometry", "material", "counter_material", "contact")
 
 
+
+def _restick_words(v_min) -> str:
+    """Say what the lowest velocity after the first slip means (it re-sticks at <= 0)."""
+    if v_min is None:
+        return "no slip"
+    return "the body sticks again after its slips" if v_min <= 0 else "no re-stick: steady sliding"
+
 class Macroscale(Stage):
     """The rigid body on the contact, with the squeeze film when wet.
 
@@ -99,7 +106,8 @@ class Macroscale(Stage):
             f"{values.get('n_slip_events')} slip events with "
             f"mu_s = {fmt(values.get('mu_static'))}, "
             f"mu_k = {fmt(values.get('mu_kinetic'))}; lowest velocity after the first slip "
-            f"{fmt(values.get('min_velocity_after_first_slip_m_s'))} m/s (above 0: no re-stick)."
+            f"{fmt(values.get('min_velocity_after_first_slip_m_s'))} m/s "
+            f"({_restick_words(values.get('min_velocity_after_first_slip_m_s'))})."
         ]
 
     def run(self, ctx: StageContext) -> StageOutput:
