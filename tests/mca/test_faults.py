@@ -75,15 +75,17 @@ def _rank_pids(out: Path) -> list[int]:
 @pytest.mark.mpi
 @pytest.mark.slow
 def test_two_ranks_killed_and_resumed(cli, tmp_path, lammps_available):
-    from tribolmp.analysis.stats import block_standard_error
-
-    args = ("mca", "run", "--preset", "smoke", "--time", "1e-9", "--seed", "5")
+    args = ("mca", "run", "--preset", "smoke", "--time", "1e-9", "--seed", "5", "--np", "2")
+    # the reference is the uninterrupted 2-rank run: every chunk of a run starts from its own
+    # restart file, so a resumed run goes through the same read_restart calls and must give the
+    # same bytes (a 1-rank run is another trajectory after ~0.4 ns: 1 vs 2 ranks is compared in
+    # statistics by test_driver.py::test_two_ranks_give_statistically_the_same_mu)
     ref = tmp_path / "ref"
     done = cli(*args, "--out", ref, timeout=600)
     assert done.returncode == 0, done.stderr
     out = tmp_path / "np2"
     proc = subprocess.Popen(
-        [sys.executable, "-m", "tribolmp", *args, "--np", "2", "--out", str(out)],
+        [sys.executable, "-m", "tribolmp", *args, "--out", str(out)],
         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
     )
     t0 = time.monotonic()
@@ -97,18 +99,10 @@ def test_two_ranks_killed_and_resumed(cli, tmp_path, lammps_available):
     _, stderr = proc.communicate(timeout=300)
     lines = [ln for ln in stderr.splitlines() if ln.strip()]
     assert proc.returncode == 3 and len(lines) == 1 and "mpiexec -n 2" in lines[0], stderr
-    resumed = cli(*args, "--np", "2", "--out", out, "--resume", "--json", timeout=600)
+    resumed = cli(*args, "--out", out, "--resume", "--json", timeout=600)
     assert resumed.returncode == 0, resumed.stderr
-    a, b = _table(ref), _table(out)
-    assert np.array_equal(a[:, 0], b[:, 0])  # same time grid: nothing lost, nothing twice
-    # several ranks: the same statistics within their errors (summation order differs, so the
-    # trajectories are not identical): friction and normal force over the second half agree
-    # within 3 combined block standard errors
-    for col in (1, 2):
-        ma, mb = (t[t[:, 0] > 0.5e-9, col] for t in (a, b))
-        ea, _ = block_standard_error(ma)
-        eb, _ = block_standard_error(mb)
-        assert abs(ma.mean() - mb.mean()) <= 3.0 * np.hypot(ea, eb), (col, ma.mean(), mb.mean())
+    # nothing lost, nothing twice, and the same numbers: friction.csv byte for byte
+    assert (out / "friction.csv").read_bytes() == (ref / "friction.csv").read_bytes()
 
 
 def _nanoscale_dir(run: Path, partial: bool) -> Path | None:

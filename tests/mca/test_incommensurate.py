@@ -80,7 +80,7 @@ def test_default_bodies_and_law_have_no_washboard_line(tmp_path, monkeypatch, la
     """
     from tribolmp.lammps.mca import driver
 
-    monkeypatch.setattr(driver, "compute_rates_if_available", lambda out: None)
+    monkeypatch.setattr(driver, "compute_rates", lambda out: None)
     params = params_from_scene(default_scene()).replace(duration=5e-9)
     assert params.bond_style == "mca" and params.body_texture == "auto"
     spectra = []
