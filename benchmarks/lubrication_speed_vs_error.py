@@ -26,10 +26,16 @@ Two further tables (issue 17):
 * ``_mixed.csv`` and ``lubrication_mixed_squeeze.png``: the film-squeeze-out
   figure of the mixed model (nominal film + summit dampers + MDR springs)
   against the old summit-dampers-only model on the same rough profile.
+* ``_summits.csv``: the near-contact summit term of the mixed model (nominal
+  film + summit terms, as ``mixed_resistance`` evaluates it) against a
+  resolved 2D Reynolds solve on a flat with paraboloidal summit caps, graded
+  around each summit (``summit_reference``), over clearances h/b = 1 ... 1e-5:
+  ratio reference/model for the matched term, the full damper, no summit
+  term and the seed's 3 pi coefficient, with the grid error of the reference.
 
 Usage::
 
-    python benchmarks/lubrication_speed_vs_error.py [--quick] [--out CSV]
+    python benchmarks/lubrication_speed_vs_error.py [--quick] [--summits-only] [--out CSV]
 """
 
 from __future__ import annotations
@@ -67,9 +73,17 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="small grids and fewer gaps")
     ap.add_argument(
+        "--summits-only", action="store_true", help="only the summit table (_summits.csv)"
+    )
+    ap.add_argument(
         "--out", default=str(Path(__file__).parent / "results" / "lubrication_speed_vs_error.csv")
     )
     args = ap.parse_args(argv)
+    if args.summits_only:
+        sm_out = Path(args.out).with_name(Path(args.out).stem + "_summits.csv")
+        summit_table(sm_out, args.quick)
+        print(f"\nwrote {sm_out}")
+        return 0
 
     from tribolmp.models.lubrication import pairlaw
     from tribolmp.models.lubrication import reference as ref
@@ -249,7 +263,9 @@ def main(argv=None) -> int:
     write_csv(ax_out, axisymmetric_speedup(args.quick))
     mx_out = out.with_name(out.stem + "_mixed.csv")
     mixed_squeeze_figure(mx_out, out.parent / "lubrication_mixed_squeeze.png", args.quick)
-    print(f"\nwrote {out}, {pl_out}, {sl_out}, {ax_out}, {mx_out}")
+    sm_out = out.with_name(out.stem + "_summits.csv")
+    summit_table(sm_out, args.quick)
+    print(f"\nwrote {out}, {pl_out}, {sl_out}, {ax_out}, {mx_out}, {sm_out}")
     return 0
 
 
@@ -431,6 +447,52 @@ def mixed_squeeze_figure(csv_path, png_path, quick: bool) -> None:
     fig.tight_layout()
     fig.savefig(png_path, dpi=110)
     plt.close(fig)
+
+
+
+def summit_table(csv_path, quick: bool) -> None:
+    """Ratio table: resolved 2D Reynolds / mixed model, over clearances, per summit geometry."""
+    import numpy as np
+
+    from tribolmp.models.lubrication import summit_reference as sr
+    from tribolmp.models.lubrication.dynamics import MixedParams, mixed_resistance
+
+    eta, L, hc = 0.1, 1e-4, 1e-15  # cut-off << every clearance (the reference has none)
+    qs = (1.0, 1e-2, 1e-4) if quick else (1.0, 0.3, 0.1, 1e-2, 1e-3, 1e-4, 1e-5)
+    rows = []
+    print("\nnear-contact summits: resolved 2D Reynolds (graded FV) / model")
+    print(f"{'case':>16}{'h/b':>8}{'ref N s/m':>11}{'grid err':>10}{'cells':>8}{'share':>7}"
+          f"{'matched':>9}{'full':>8}{'none':>9}{'3 pi':>8}{'t (s)':>7}")
+    for name in sr.CASES:
+        for q in qs:
+            C, R, tops, H = sr.case_geometry(name, q)
+            t0 = time.perf_counter()
+            ref = sr.summit_reference(L, H, C, R, tops, eta)
+            t_ref = time.perf_counter() - t0
+            g = sr.sampled_gap(L, H, C, R, tops) - tops[0]
+            gj = np.asarray(tops) - tops[0]
+
+            def model(**kw):
+                p = MixedParams(viscosity=eta, film_cutoff=hc, **kw)
+                return mixed_resistance(g, -tops[0], p, L, gj, R)
+
+            c, c_nom, c_s = model()
+            full = model(summit_model="full")[0]
+            none = model(summit_dampers=False)[0]
+            r = ref.resistance
+            row = dict(
+                case=name, h_over_b=q, top_gap_m=tops[0], reference_Ns_per_m=r,
+                reference_grid_error=ref.grid_error, cells=ref.cells, reference_time_s=t_ref,
+                nominal_Ns_per_m=c_nom, summit_Ns_per_m=c_s, summit_share=c_s / c,
+                ratio_matched=r / c, ratio_full=r / full, ratio_no_summits=r / none,
+                ratio_3pi=r / (c_nom + 0.5 * c_s),
+            )
+            rows.append(row)
+            print(f"{name:>16}{q:>8.0e}{r:>11.4e}{ref.grid_error:>+10.1e}{ref.cells:>8d}"
+                  f"{row['summit_share']:>7.3f}{row['ratio_matched']:>9.4f}"
+                  f"{row['ratio_full']:>8.4f}{row['ratio_no_summits']:>9.3f}"
+                  f"{row['ratio_3pi']:>8.4f}{t_ref:>7.2f}")
+    write_csv(csv_path, rows)
 
 
 if __name__ == "__main__":  # pragma: no cover

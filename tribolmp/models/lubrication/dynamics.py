@@ -43,6 +43,8 @@ __all__ = [
     "MixedParams",
     "mixed_approach",
     "summits",
+    "summit_resistance",
+    "mixed_resistance",
     "nominal_film_table",
 ]
 
@@ -312,8 +314,18 @@ class MixedParams:
         only for a single smooth summit, e.g. a sphere, whose one damper is
         already its whole Reynolds film).
     summit_dampers : bool
-        Add the local 6 pi eta R_j^2 / (gap_j + h_c) resistance of each summit
-        (the inner, near-contact singularity of the film; see the module notes).
+        Add the local resistance of each summit (the inner, near-contact
+        singularity of the film; see :func:`summit_resistance`).
+    summit_model : str
+        ``"matched"`` (default): with the nominal film, each summit adds only
+        its excess over the nominal film, ``6 pi eta R_j^2 (1/s - 2/u + s/u^2)``
+        (``s = gap_j + h_c``, ``u``: separation of the flat from the mean plane),
+        the paraboloid's film cut at the mean-plane gap (derived in
+        :func:`summit_resistance`; checked against resolved 2D Reynolds solves,
+        docs/lubrication.md).  ``"full"``: the whole paraboloid damper
+        ``6 pi eta R_j^2 / s`` on top of the nominal film (the earlier model; it
+        counts the summit's outer film twice).  Without the nominal film the
+        full damper is always used (it is then the whole film of the summit).
     """
 
     viscosity: float = param(0.1, unit="Pa s", lo=0.0, lo_open=True, hi=1e9)
@@ -328,6 +340,7 @@ class MixedParams:
     flow_factor: str = param("bruggeman", choices=("bruggeman", "patir-cheng", "smooth"))
     nominal_film: bool = param(True)
     summit_dampers: bool = param(True)
+    summit_model: str = param("matched", choices=("matched", "full"))
 
     def __post_init__(self) -> None:
         validate_dataclass(self)
@@ -350,6 +363,147 @@ def summits(x, g):
     curv = (g[idx - 1] - 2.0 * g[idx] + g[idx + 1]) / dx**2
     ok = curv > 0
     return idx[ok], 2.0 / curv[ok]
+
+
+def _summit_terms(d, gj, radii, viscosity, hc, gbar, matched):
+    """(c, Phi): summed summit resistance (N s/m) and its primitive in d (N s) at indentation d.
+
+    ``matched``: per summit ``c_j = alpha (u - s)^2 / (s u^2)`` for s < u, else
+    0 (``alpha = 6 pi eta R_j^2``, ``s = max(g_j - d, 0) + h_c``,
+    ``u = gbar - d``).  While the summit is open ``u - s = delta_j =
+    gbar - g_j - h_c`` is constant and ``Phi_j = -alpha (ln(s/u) + delta_j/u)``;
+    once it touches (s = h_c) ``Phi_j`` continues with the primitive of
+    ``alpha (u - h_c)^2/(h_c u^2)`` in u.  ``full``: ``c_j = alpha/s``,
+    ``Phi_j = -alpha ln s``.  Phi is continuous and increasing in d.
+    """
+    alpha = 6.0 * math.pi * viscosity * np.asarray(radii, float) ** 2
+    gj = np.asarray(gj, float)
+    s = np.clip(gj - d, 0.0, None) + hc
+    if not matched:
+        return float(np.sum(alpha / s)), float(np.sum(-alpha * np.log(s)))
+    u = gbar - d
+    c = np.where(s < u, alpha * (u - s) ** 2 / (s * u**2), 0.0)
+    delta = gbar - gj - hc
+    live = delta > 0
+    if not np.any(live):
+        return float(np.sum(c)), 0.0
+    a, dl, g_l = alpha[live], delta[live], gj[live]
+    uj = gbar - g_l  # u at first touch of summit j (= delta_j + h_c)
+    if hc <= 0.0:  # no cut-off (summit_resistance only): c is defined, Phi is not needed
+        return float(np.sum(c)), float("nan")
+    phi_touch = -a * (np.log(hc / uj) + dl / uj)
+
+    def big_g(uu):
+        return uu - 2.0 * hc * np.log(uu) - hc**2 / uu
+
+    open_ = g_l > d
+    phi = np.where(
+        open_,
+        -a * (np.log((np.clip(g_l - d, 0.0, None) + hc) / u) + dl / u),
+        phi_touch - a / hc * (big_g(u) - big_g(uj)),
+    )
+    return float(np.sum(c)), float(np.sum(phi))
+
+
+def summit_resistance(
+    summit_gaps, radii, viscosity: float, film_cutoff: float, separation=None
+) -> float:
+    """Near-contact resistance (N s/m) of paraboloidal summits, as the mixed model adds it.
+
+    One summit of radius R at gap h above a flat has the thin-film resistance
+    ``6 pi eta R^2 / h`` (the paraboloid's Reynolds film, exact).  On a rough
+    surface its gap only grows like ``h + r^2/2R`` out to where it meets the
+    rest of the surface, and the nominal film of the apparent area already
+    carries that outer part.  Cutting the paraboloid at the mean-plane gap
+    ``u`` (the outer, nominal gap) and keeping only what lies above the
+    nominal pressure gives, from the exact radial flux ``V r/2``,
+
+        c = 6 pi eta int_0^{a} r^3 / h^3 dr - (nominal part)
+          = 6 pi eta R^2 (1/h - 2/u + h/u^2) ,      a^2 = 2 R (u - h),
+
+    (``= 6 pi eta R^2 (u - h)^2 / (h u^2)``; the same integral gives the flat
+    plate's film for the rest of the area).  It tends to the full damper as
+    h/u -> 0 and vanishes at h = u.  ``h`` is the summit's gap plus the film
+    cut-off ``h_c``.
+
+    Parameters
+    ----------
+    summit_gaps : array_like
+        Gap of each summit top to the flat (m, >= 0).
+    radii : array_like
+        R_j (m).
+    viscosity : float
+        eta (Pa s).
+    film_cutoff : float
+        h_c (m).
+    separation : float, optional
+        u, the flat's separation from the mean plane (m).  None: the full
+        damper ``sum 6 pi eta R_j^2/(h_j + h_c)`` (no nominal film to match).
+    """
+    gj = np.asarray(summit_gaps, float)
+    if separation is None:
+        return _summit_terms(0.0, gj, radii, viscosity, film_cutoff, 0.0, False)[0]
+    # d = 0 reference: g_j -> summit gaps, gbar -> separation
+    return _summit_terms(0.0, gj, radii, viscosity, film_cutoff, float(separation), True)[0]
+
+
+def mixed_resistance(g, d, params, length: float, summit_gaps=None, summit_radii=None):
+    """Film resistance (N s/m) of :func:`mixed_approach` at indentation d, evaluated exactly.
+
+    ``c_nom + c_summits``: the nominal film of the apparent area
+    (:func:`~.flow_factor.film_resistance` on the rigid gaps ``max(g - d, 0)``,
+    separation ``mean(g) - d``) plus :func:`summit_resistance` (matched or
+    full, ``params.summit_model``).  ``mixed_approach`` steps the same
+    resistance through a tabulated primitive (spline error < 1e-5).
+
+    Parameters
+    ----------
+    g : array_like
+        Height samples of the gap from the highest point (m, min 0): the MDR
+        profile, or the cells of a 2D gap map minus its minimum.
+    d : float
+        Indentation of the flat (m; -d is the clearance of the top).
+    params : MixedParams
+    length : float
+        Side (square) or diameter (disc) of the apparent contact (m).
+    summit_gaps, summit_radii : array_like, optional
+        Summit heights g_j in the same frame as g (m) and radii (m); default
+        the summits of g as an MDR profile (:func:`summits`, needs x: pass them).
+
+    Returns
+    -------
+    (c_total, c_nominal, c_summits) : floats
+    """
+    from .flow_factor import film_resistance
+
+    g = np.asarray(g, float).ravel()
+    p = params
+    gbar = float(np.mean(g))
+    c_nom = 0.0
+    if p.nominal_film:
+        c_nom = float(
+            film_resistance(
+                np.clip(g - d, 0.0, None),
+                p.viscosity,
+                p.apparent_shape,
+                length,
+                method=p.flow_factor,
+                separation=gbar - d,
+                sigma=float(np.std(g)),
+            )[0]
+        )
+    c_s = 0.0
+    if p.summit_dampers:
+        c_s = _summit_terms(
+            d,
+            summit_gaps,
+            summit_radii,
+            p.viscosity,
+            p.film_cutoff,
+            gbar,
+            p.nominal_film and p.summit_model == "matched",
+        )[0]
+    return c_nom + c_s, c_nom, c_s
 
 
 def nominal_film_table(
@@ -445,12 +599,14 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None, times=None) 
         raise ParameterError(
             "g", "a profile with at least one summit (local minimum of the gap)", "none"
         )
-    alpha = 6.0 * math.pi * p.viscosity * Rj**2 if p.summit_dampers else np.zeros(0)
+    Rj = Rj if p.summit_dampers else np.zeros(0)
     gj = g[idx] if p.summit_dampers else np.zeros(0)
     hc = p.film_cutoff
+    matched = p.nominal_film and p.summit_model == "matched"
+    gbar = float(np.mean(g))
 
-    def log_s(d):
-        return np.log(np.clip(gj - d, 0.0, None) + hc)
+    def summit_terms(dd):
+        return _summit_terms(dd, gj, Rj, p.viscosity, hc, gbar, matched)
 
     def dry(dd):
         return nf(x, g, dd, p.E_star) - p.normal_force
@@ -472,7 +628,6 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None, times=None) 
     d_top = min(d_dry, d_seal * (1.0 - 1e-9)) if sealed else d_dry
     dg, cg, Phig, closedg = nominal_film_table(g, p, length, d0, d_top)
     # Phi is smooth in ln u; spline it there (exact at the nodes, monotone to round-off)
-    gbar = float(np.mean(g))
     lnu = np.log(gbar - dg)
     on = 1.0 if p.nominal_film else 0.0
     phi_spline = CubicSpline(lnu[::-1], on * Phig[::-1])
@@ -496,10 +651,10 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None, times=None) 
     with timed(res):
         for k in range(1, t.size):
             dt = t[k] - t[k - 1]
-            ls0, ph0 = log_s(d[k - 1]), phi_nom(d[k - 1])
+            ps0, ph0 = summit_terms(d[k - 1])[1], phi_nom(d[k - 1])
 
             def resid(dd):
-                film = phi_nom(dd) - ph0 + float(np.sum(alpha * (ls0 - log_s(dd))))
+                film = phi_nom(dd) - ph0 + summit_terms(dd)[1] - ps0
                 return film / dt + nf(x, g, dd, p.E_star) - p.normal_force
 
             lo = d[k - 1]
@@ -514,7 +669,7 @@ def mixed_approach(x, g, params: MixedParams, *, normal_force=None, times=None) 
     Ff = p.normal_force - Fs
     Ff[0] = p.normal_force
     c_nom = on * np.exp(c_spline(np.log(gbar - d)))
-    c_sum = np.array([float(np.sum(alpha / (np.clip(gj - dd, 0.0, None) + hc))) for dd in d])
+    c_sum = np.array([summit_terms(dd)[0] for dd in d])
     film = g[None, :] - d[:, None]
     touched = np.nonzero(film.min(axis=1) <= 0)[0]
     res.update(
