@@ -11,7 +11,9 @@ Names:
   ``contact-light:CLASS`` runs a class with 256^2 maps, for a crowded machine),
   then the summary ``contact-summary`` (no new solves): the MDR ratio table
   (``tests/data/contact_ratio_table.md``) and the planner's speed-error table
-  ``tribolmp/data/contact_speed_error.json``.  Run it with ``nice -n 10``: one class
+  ``tribolmp/data/contact_speed_error.json``; ``contact-fingerprint`` stores (no solves) the
+  fingerprint of every map's base-grid height map (:func:`map_fingerprint`) next to its
+  curves, which the tests check.  Run it with ``nice -n 10``: one class
   at 512^2 took 11-12 min of wall time on the shared 2-core machine (load 5-7), most of it the
   rigid-punch BEM (zero-padded 1024^2 FFTs).
 
@@ -34,6 +36,52 @@ from tests.data import DATA_DIR, RECIPES, generate  # noqa: E402
 # TRIBOLMP_CONTACT_JSON: write the contact classes elsewhere (parallel runs, merged by
 # "contact-merge:A,B")
 CONTACT_JSON = Path(os.environ.get("TRIBOLMP_CONTACT_JSON", DATA_DIR / "contact_references.json"))
+
+
+#: seed of the fixed +-1 masks of :func:`map_fingerprint` (part of the fingerprint's definition)
+FINGERPRINT_SEED = 20261202
+
+
+def map_fingerprint(h) -> list[float]:
+    """Numerical fingerprint of a height map: 9 numbers that change with any pixel of it.
+
+    ``[mean, std, min, max, rms slope (one-pixel differences, per pixel), and the
+    means of h times four fixed random +-1 masks (seed FINGERPRINT_SEED)]``, all
+    in units of the map's heights (m).  Unlike a byte hash of the floats it is
+    insensitive to round-off (FFT libraries, platforms): it is compared with a
+    relative tolerance, while one pixel changed by its rms moves the mask means
+    by ~ 1/n^2 of the rms (4e-6 on 512^2), far above round-off (1e-15).
+    """
+    import numpy as np
+
+    h = np.asarray(h, dtype=float)
+    masks = np.random.default_rng(FINGERPRINT_SEED).integers(0, 2, (4,) + h.shape) * 2 - 1
+    slope = np.sqrt(np.mean(np.diff(h, axis=0) ** 2) + np.mean(np.diff(h, axis=1) ** 2))
+    return [
+        float(h.mean()),
+        float(h.std()),
+        float(h.min()),
+        float(h.max()),
+        float(slope),
+        *(float(np.mean(h * mk)) for mk in masks),
+    ]
+
+
+def _fingerprint_class(cls: dict) -> None:
+    """Store ``map_fingerprint`` (base grid) in every map of a class (no solves)."""
+    from tests.data import contact_references as cr
+
+    nb = cr.n_base(cls)
+    for m in cls["maps"]:
+        h, _ = cr.reference_surface(cls["recipe"], m["seed"], nb)
+        m["map_fingerprint"] = dict(n=nb, values=map_fingerprint(h))
+
+
+def _contact_fingerprints() -> None:
+    refs = json.loads(CONTACT_JSON.read_text())
+    for cls in refs["classes"].values():
+        _fingerprint_class(cls)
+    CONTACT_JSON.write_text(json.dumps(refs, indent=None, separators=(",", ":")) + "\n")
 
 
 def _contact(classes: list[str], base: int | None = None) -> None:
@@ -62,6 +110,7 @@ def _contact(classes: list[str], base: int | None = None) -> None:
         refs["classes"][name] = cr.run_class(
             name, log=lambda s: print(s, flush=True), base=base or cr.N_BASE
         )
+        _fingerprint_class(refs["classes"][name])  # the maps these curves were computed from
         refs["created_utc"] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
         CONTACT_JSON.write_text(
             json.dumps(refs, indent=None, separators=(",", ":")) + "\n"
@@ -110,6 +159,8 @@ def main(argv=None) -> int:
             for part in name.split(":", 1)[1].split(","):
                 refs["classes"].update(json.loads(Path(part).read_text())["classes"])
             CONTACT_JSON.write_text(json.dumps(refs, indent=None, separators=(",", ":")) + "\n")
+        elif name == "contact-fingerprint":
+            _contact_fingerprints()
         elif name == "contact-coarse":
             _contact_coarse()
         elif name == "contact-summary":
