@@ -41,7 +41,34 @@ __all__ = [
     "tensor_reynolds_squeeze",
     "summit_reference",
     "cap_on_disc_resistance",
+    "fourier_gap",
 ]
+
+
+def fourier_gap(coefficients, length: float, separation: float):
+    """Gap ``u - z(x, y)`` of a flat above a band-limited periodic surface, at any points.
+
+    ``z = Re sum B[k, l] exp(2 pi i (k x + l y) / L)`` with the coefficients of
+    :func:`tribolmp.models.contact.rough.fourier_coefficients` (the surface that
+    ``surface_from_coefficients`` samples on uniform grids), evaluated exactly
+    at arbitrary tensor-grid points by two matrix products.
+
+    Returns
+    -------
+    callable
+        ``gap(x, y)`` for ``x`` of shape (n, 1) and ``y`` of shape (1, m) (m).
+    """
+    B = np.asarray(coefficients)
+    kmax = (B.shape[0] - 1) // 2
+    k = np.arange(-kmax, kmax + 1)
+
+    def gap(x, y):
+        ex = np.exp(2j * np.pi * np.outer(np.ravel(x), k) / length)
+        ey = np.exp(2j * np.pi * np.outer(np.ravel(y), k) / length)
+        z = np.real(ex @ B @ ey.T)
+        return (separation - z).reshape(np.broadcast(x, y).shape)
+
+    return gap
 
 
 def summit_gap(x, y, clearance: float, centres, radii, tops) -> np.ndarray:
@@ -51,8 +78,9 @@ def summit_gap(x, y, clearance: float, centres, radii, tops) -> np.ndarray:
     ----------
     x, y : ndarray
         Sample coordinates (m), broadcast against each other.
-    clearance : float
-        H, gap between the flat and the base plane (m).
+    clearance : float or callable
+        H, gap between the flat and the base plane (m); or ``clearance(x, y)``,
+        the gap of a rough base (e.g. :func:`fourier_gap`).
     centres : sequence of (float, float)
         Summit positions (m).
     radii : sequence of float
@@ -60,7 +88,10 @@ def summit_gap(x, y, clearance: float, centres, radii, tops) -> np.ndarray:
     tops : sequence of float
         Gap h_j (m) at the top of each summit (0 < h_j <= H).
     """
-    h = np.full(np.broadcast(x, y).shape, float(clearance))
+    if callable(clearance):  # a rough base: its gap at (x, y)
+        h = np.asarray(clearance(x, y), dtype=float) * np.ones(np.broadcast(x, y).shape)
+    else:
+        h = np.full(np.broadcast(x, y).shape, float(clearance))
     for (xc, yc), R, hj in zip(centres, radii, tops, strict=True):
         h = np.minimum(h, hj + ((x - xc) ** 2 + (y - yc) ** 2) / (2.0 * R))
     return h
@@ -228,7 +259,7 @@ def summit_reference(
         ``resistance`` (N s/m), ``grid_error`` (relative, signed: c_exact ~
         resistance - grid_error * resistance), ``cells``, ``coarse_resistance``.
     """
-    if not all(0.0 < t <= clearance for t in tops):
+    if not callable(clearance) and not all(0.0 < t <= clearance for t in tops):
         raise ParameterError("tops", f"summit gaps in (0, clearance = {clearance:g} m]", list(tops))
     res = Result(method="graded finite-volume Reynolds")
 
