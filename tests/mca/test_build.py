@@ -37,10 +37,11 @@ def test_profiles_depend_only_on_the_generator():
     assert np.array_equal(a, b) and not np.array_equal(a, c)
 
 
-@pytest.mark.parametrize("dim", [2, 3])
-def test_stack_layers_and_bonds(dim, rng):
+@pytest.mark.parametrize("dim,texture", [(2, "aligned"), (3, "aligned"), (3, "rotated")])
+def test_stack_layers_and_bonds(dim, texture, rng):
     g = build_system(
-        dim=dim, d=2.5, length=40.0, body_height=12.0, roughness_rms=1.0, rng=rng, width=8.0
+        dim=dim, d=2.5, length=40.0, body_height=12.0, roughness_rms=1.0, rng=rng, width=8.0,
+        texture=texture,
     )
     mol = g.atoms.arrays["mol_id"]
     y = g.atoms.positions[:, 1]
@@ -63,7 +64,11 @@ def test_stack_layers_and_bonds(dim, rng):
     if dim == 3:
         dv[..., 2] -= g.box[2, 1] * np.round(dv[..., 2] / g.box[2, 1])
     dist = np.linalg.norm(dv, axis=2)
-    assert dist.min() >= 0.99 * 2.5 and dist.min() < 1.01 * 2.5
+    # aligned lattices stack column on column, so the closest pair is exactly one diameter apart;
+    # rotated ones are closed column-wise (vertical gap <= d) with the closest pair offset
+    # laterally within its column bin: measured 1.042 d, bounded here by 1.1 d (no overlap either way)
+    top = 1.01 if texture == "aligned" else 1.1
+    assert dist.min() >= 0.99 * 2.5 and dist.min() < top * 2.5
     b = g.bonds
     mi, mj = mol[b[:, 1]], mol[b[:, 2]]
     assert not np.any(
@@ -110,3 +115,45 @@ def test_data_file_reads_back_in_lammps(lmp, dim, rng, tmp_path):
     # LAMMPS mass = density * pi D^3 / 6 in 2D and 3D
     rmass = np.array(lmp.lmp.numpy.extract_atom("rmass"))
     assert np.allclose(rmass, 0.02 * np.pi * 2.4**3 / 6)
+
+
+def _inplane_bond_angles(g, mol_id):
+    """Angles (deg, mod 90) of the in-plane (x-z) nearest-neighbour links inside one body."""
+    mol = g.atoms.arrays["mol_id"]
+    b = g.bonds[(mol[g.bonds[:, 1]] == mol_id) & (mol[g.bonds[:, 2]] == mol_id)]
+    dv = g.atoms.positions[b[:, 1]] - g.atoms.positions[b[:, 2]]
+    for ax in (0, 2):
+        length = g.box[ax, 1] - g.box[ax, 0]
+        dv[:, ax] -= length * np.round(dv[:, ax] / length)
+    flat = np.abs(dv[:, 1]) < 1e-9  # links within one (010) lattice plane
+    return np.degrees(np.arctan2(dv[flat, 2], dv[flat, 0])) % 90.0
+
+
+def test_rotated_3d_bodies_meet_at_the_sigma5_misorientation(rng):
+    """3D ``rotated``: each body's cube axes turned by -+atan(1/3) about the normal.
+
+    The in-plane links of an FCC (010) plane run at 45 deg (mod 90) to the cube axes, so the
+    lower body's must sit at 45 - 18.43 and the upper body's at 45 + 18.43 deg; the bodies
+    then meet 36.87 deg apart and neither has a close-packed row along the sliding direction
+    (aligned bodies: both at exactly 45 deg).  Exact up to rounding, because the coincidence
+    period sqrt(10) a makes both lattices periodic in the box without stretching.
+    """
+    theta = np.degrees(np.arctan(1.0 / 3.0))
+    g = build_system(
+        dim=3, d=2.5, length=40.0, body_height=12.0, roughness_rms=1.0, rng=rng, width=8.0,
+        texture="rotated",
+    )
+    lo, up = _inplane_bond_angles(g, MOL_LOWER), _inplane_bond_angles(g, MOL_UPPER)
+    assert lo.size > 100 and up.size > 100
+    np.testing.assert_allclose(lo, 45.0 - theta, atol=1e-6)
+    np.testing.assert_allclose(up, 45.0 + theta, atol=1e-6)
+    # the box is whole coincidence periods along x and z
+    period = np.sqrt(10.0) * np.sqrt(2.0) * 2.5
+    for ax in (0, 2):
+        n = (g.box[ax, 1] - g.box[ax, 0]) / period
+        assert n == pytest.approx(round(n), abs=1e-9)
+    ga = build_system(
+        dim=3, d=2.5, length=40.0, body_height=12.0, roughness_rms=1.0,
+        rng=np.random.default_rng(0), width=8.0,
+    )
+    np.testing.assert_allclose(_inplane_bond_angles(ga, MOL_LOWER), 45.0, atol=1e-6)

@@ -315,6 +315,56 @@ def _hex_columns(ncol: int, height: float, d: float, lx: float):
     return Atoms(f"H{len(pos)}", positions=pos, cell=[lx, height, d], pbc=[True, False, True])
 
 
+#: The ``rotated`` texture in 3D: both bodies' cube axes turned about the surface normal by
+#: +-atan(1/3) = +-18.43 deg, so they meet 36.87 deg apart (the Sigma-5 misorientation of two
+#: cubic lattices, the largest below 45 deg with a short coincidence period).  The rotated FCC
+#: lattice repeats along x and z after sqrt(10) a (the cube vectors (3, 0, +-1) a), so both
+#: bodies are exactly periodic in a box of whole multiples of sqrt(10) a, without stretching.
+ROT3D_MN = (3, 1)
+
+
+def _rotated_fcc_block(kx: int, kz: int, ncells: int, d: float, sign: int):
+    """ASE Atoms of an FCC block turned by ``sign * atan(n/m)`` about y (see :data:`ROT3D_MN`).
+
+    ``kx`` x ``kz`` coincidence cells of side sqrt(m^2 + n^2) a along x and z, ``ncells``
+    cubic cells (a) high; nearest neighbours at ``d``.  Lattice points are generated over a
+    region covering the rotated box and wrapped into it; the coincidence makes the wrap exact,
+    so the images of one site coincide and are merged.
+    """
+    from ase import Atoms
+
+    m, n = ROT3D_MN
+    a = math.sqrt(2.0) * d
+    period = math.hypot(m, n) * a
+    lx, lz = kx * period, kz * period
+    c, s = m / math.hypot(m, n), sign * n / math.hypot(m, n)
+    basis = np.array([[0, 0, 0], [0.5, 0.5, 0], [0.5, 0, 0.5], [0, 0.5, 0.5]])
+    # cube-lattice cells covering the rotated box: its corners mapped back by the inverse rotation
+    corners = np.array([[x, z] for x in (0.0, lx) for z in (0.0, lz)])
+    back = np.column_stack(
+        [c * corners[:, 0] - s * corners[:, 1], s * corners[:, 0] + c * corners[:, 1]]
+    )
+    lo = np.floor(back.min(axis=0) / a).astype(int) - 1
+    hi = np.ceil(back.max(axis=0) / a).astype(int) + 1
+    i, j, k = np.meshgrid(
+        np.arange(lo[0], hi[0]), np.arange(ncells), np.arange(lo[1], hi[1]), indexing="ij"
+    )
+    cells = np.column_stack([i.ravel(), j.ravel(), k.ravel()]).astype(float)
+    pts = (cells[:, None, :] + basis[None, :, :]).reshape(-1, 3) * a
+    # rotation about y (x' = c x + s z, z' = -s x + c z): the inverse of the map above
+    x = c * pts[:, 0] + s * pts[:, 2]
+    z = -s * pts[:, 0] + c * pts[:, 2]
+    pos = np.column_stack([np.mod(x, lx), pts[:, 1], np.mod(z, lz)])
+    # images of one site differ by rounding only; the site closest to the box edge may wrap to
+    # either side, so compare modulo the period
+    key = np.round(pos / (1e-6 * d)).astype(np.int64)
+    key[:, 0] %= int(round(lx / (1e-6 * d)))
+    key[:, 2] %= int(round(lz / (1e-6 * d)))
+    _, first = np.unique(key, axis=0, return_index=True)
+    pos = pos[np.sort(first)]
+    return Atoms(f"H{len(pos)}", positions=pos, cell=[lx, ncells * a, lz], pbc=[True, False, True])
+
+
 def _fcc_block(nx: int, ncells: int, nz: int, d: float):
     """ASE Atoms of an FCC block with cube axes along x, y, z; nearest neighbours at d."""
     from ase.build import bulk
@@ -396,8 +446,8 @@ def build_system(
         raise ParameterError("hurst", "a number in (0, 1]", hurst)
     if texture not in ("aligned", "rotated", "tilted", "polycrystalline"):
         raise ParameterError("body_texture", "aligned, rotated, tilted or polycrystalline", texture)
-    if texture != "aligned" and dim != 2:
-        raise ParameterError("body_texture", "aligned in 3D (textured bodies are 2D only)", texture)
+    if texture in ("tilted", "polycrystalline") and dim != 2:
+        raise ParameterError("body_texture", "aligned or rotated in 3D", texture)
     if dim == 2:
         nx = max(4, int(round(length / d)))
         nrows = max(4, int(math.ceil(body_height / (math.sqrt(3.0) / 2.0 * d)))) + 4
@@ -417,12 +467,22 @@ def build_system(
         nz = 1
     else:
         a = math.sqrt(2.0) * d
-        nx = max(2, int(round(length / a)))
-        nz = max(2, int(round((width if width is not None else length / 4.0) / a)))
         ncell = max(2, int(math.ceil(body_height / a))) + 2
-        lower, dy = _fcc_block(nx, ncell + 1, nz, d)
-        upper, _ = _fcc_block(nx, ncell + 1, nz, d)
-        lx, lz = nx * a, nz * a
+        wz = width if width is not None else length / 4.0
+        if texture == "rotated":
+            period = math.hypot(*ROT3D_MN) * a
+            kx, kz = max(2, round(length / period)), max(1, round(wz / period))
+            lower = _rotated_fcc_block(kx, kz, ncell + 1, d, +1)
+            upper = _rotated_fcc_block(kx, kz, ncell + 1, d, -1)
+            dy = a / 2.0
+            lx, lz = kx * period, kz * period
+            nx, nz = int(round(lx / a)), int(round(lz / a))
+        else:
+            nx = max(2, int(round(length / a)))
+            nz = max(2, int(round(wz / a)))
+            lower, dy = _fcc_block(nx, ncell + 1, nz, d)
+            upper, _ = _fcc_block(nx, ncell + 1, nz, d)
+            lx, lz = nx * a, nz * a
         nsurf = (4 * nx, 4 * nz)
     h_lo = self_affine_profile(nsurf, roughness_rms, hurst, rng)
     h_up = self_affine_profile(nsurf, roughness_rms, hurst, rng)

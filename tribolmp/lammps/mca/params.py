@@ -142,10 +142,10 @@ class MCAParams:
                 f"a value <= body_height/4 ({self.body_height / 4:g} m)",
                 self.roughness_rms,
             )
-        if self.body_texture in ("rotated", "tilted", "polycrystalline") and self.dim == 3:
+        if self.body_texture in ("tilted", "polycrystalline") and self.dim == 3:
             raise ParameterError(
                 "body_texture",
-                "aligned or auto in 3D (textured bodies are 2D only)",
+                "aligned, rotated or auto in 3D (tilted and polycrystalline are 2D only)",
                 self.body_texture,
             )
         if self.texture == "polycrystalline" and not (3 * d <= self.grain_size <= self.box_length):
