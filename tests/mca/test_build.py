@@ -66,7 +66,8 @@ def test_stack_layers_and_bonds(dim, texture, rng):
     dist = np.linalg.norm(dv, axis=2)
     # aligned lattices stack column on column, so the closest pair is exactly one diameter apart;
     # rotated ones are closed column-wise (vertical gap <= d) with the closest pair offset
-    # laterally within its column bin: measured 1.042 d, bounded here by 1.1 d (no overlap either way)
+    # laterally within its column bin: measured 1.042 d, bounded here by 1.1 d (no overlap
+    # either way)
     top = 1.01 if texture == "aligned" else 1.1
     assert dist.min() >= 0.99 * 2.5 and dist.min() < top * 2.5
     b = g.bonds
