@@ -96,6 +96,9 @@ class MaterialSpec:
     contact_friction : float
         Coulomb cap of the viscous tangential force between touching,
         unlinked automata.
+    contact_viscosity : float
+        Viscosity of the seed's dissipative force between touching, unlinked
+        automata (Pa s; used by the ``mca`` law, whose default is 0.05 Pa s).
     """
 
     youngs_modulus: float = 206e9
@@ -109,6 +112,7 @@ class MaterialSpec:
     failure_strain: float = 0.05
     damping_ratio: float = 0.1
     contact_friction: float = 0.5
+    contact_viscosity: float = 0.05
 
     def __post_init__(self) -> None:
         check_range("youngs_modulus", self.youngs_modulus, 0.0, 2e12, lo_open=True, unit="Pa")
@@ -136,6 +140,7 @@ class MaterialSpec:
             raise ParameterError("dim", "2 or 3", self.dim)
         check_range("damping_ratio", self.damping_ratio, 0.0, 1.0)
         check_range("contact_friction", self.contact_friction, 0.0, 10.0)
+        check_range("contact_viscosity", self.contact_viscosity, 0.0, 1e3, unit="Pa s")
         from .laws import get_law  # the law's own limits (registry: tribolmp.lammps.laws)
 
         get_law(self.bond_style).validate(self)

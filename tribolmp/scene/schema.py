@@ -325,6 +325,14 @@ class Nanoscale(Section):
         hi=1e-6,
         doc="Initial interface roughness Rq (old key roughness_rms).",
     )
+    contact_viscosity: float = param(
+        0.05,
+        unit="Pa s",
+        lo=0.0,
+        hi=1e3,
+        doc="Viscosity of the dissipative force between touching, unlinked automata (mca law); "
+        "the seed's fitting parameter for the layer depth.",
+    )
     preset: str = param("smoke", choices=("smoke", "default", "paper"), doc="Size/time preset.")
     ranks: int = param(1, lo=1, hi=1024, doc="MPI ranks (mpiexec -n).")
 

@@ -78,6 +78,9 @@ class MCAParams:
         0.1, lo=0.0, hi=1.0, doc="Link/contact damping, fraction of critical."
     )
     contact_friction: float = param(0.5, lo=0.0, hi=10.0, doc="Coulomb cap of contact viscosity.")
+    # F = eta A / d v_rel (mca law); calibration in docs/mca_study.md; a large viscosity needs a
+    # smaller dt_factor (the explicit viscous damping limit, checked below)
+    contact_viscosity: float = _scene_field(Nanoscale, "contact_viscosity")
     dt_factor: float = param(0.1, lo=0.0, lo_open=True, hi=10.0, doc="Timestep / sqrt(m/k).")
     ramp_time: float = param(0.1e-9, unit="s", lo=0.0, hi=1e-6, doc="Velocity ramp 0 -> V.")
     approach_velocity: float = param(
@@ -162,7 +165,7 @@ class MCAParams:
             raise ParameterError(
                 "dt_factor",
                 f"a value <= {0.5 * coeff.dt_max_factor:.3g} "
-                "(half the lattice's Verlet stability limit)",
+                "(half the Verlet stability limit of the lattice with its contact viscosity)",
                 self.dt_factor,
             )
         if self.pressure >= coeff.flow_stress:
@@ -198,6 +201,7 @@ class MCAParams:
             failure_strain=self.failure_strain,
             damping_ratio=self.damping_ratio,
             contact_friction=self.contact_friction,
+            contact_viscosity=self.contact_viscosity,
         )
 
     def replace(self, **changes: Any) -> MCAParams:
