@@ -59,8 +59,10 @@ class MCAParams:
         doc="Lattices of the two bodies: tilted (2D: both bodies single crystals with their rows "
         "at about 12 and 19 deg to the sliding direction, meeting 30 deg apart, so neither surface "
         "repeats after d), rotated (2D: the upper body turned by 90 deg, washboard "
-        "at V/d 6-30x weaker), polycrystalline (2D: both bodies of randomly oriented grains, no "
-        "washboard, but weak grain boundaries that compact under load), aligned (one orientation, "
+        "at V/d 6-30x weaker; 3D: both FCC bodies turned by -+18.43 deg about the normal, "
+        "meeting 36.87 deg apart, box in whole sqrt(10) a cells), polycrystalline (2D: both "
+        "bodies of randomly oriented grains, no washboard, but weak grain boundaries that "
+        "compact under load), aligned (one orientation, "
         "the old commensurate setup), auto (rotated in 2D, aligned in 3D).",
     )
     grain_size: float = param(
