@@ -61,6 +61,8 @@ CAMPAIGN_COLUMNS = (
     "seed",
     "dim",
     "law",
+    "contact_viscosity_Pa_s",
+    "dt_factor",
     "box_length_m",
     "body_height_m",
     "natoms",
@@ -128,6 +130,18 @@ def localized(rates: dict, within_m: float) -> bool | None:
     return True
 
 
+def _viscosity_as_run(rates: dict, meta: dict) -> float | None:
+    """Return the mca law's contact viscosity of a run (Pa s), a deck override included."""
+    if (rates.get("conditions") or {}).get("law") != "mca":
+        return None
+    eta = (meta.get("overrides") or {}).get("eta")
+    if eta is not None:
+        from tribolmp.units import from_lammps
+
+        return from_lammps(float(eta), "viscosity")
+    return ((meta.get("mapping") or {}).get("law") or {}).get("contact_viscosity")
+
+
 def campaign_row(row: dict, rates: dict, meta: dict, params) -> dict:
     """One committed row of the campaign table from a run's rates.json and meta.json.
 
@@ -142,6 +156,9 @@ def campaign_row(row: dict, rates: dict, meta: dict, params) -> dict:
         "seed": row["seed"],
         "dim": (rates.get("conditions") or {}).get("dim"),
         "law": (rates.get("conditions") or {}).get("law"),
+        # the law's viscosity as run (a deck override included); bpm laws have none
+        "contact_viscosity_Pa_s": _viscosity_as_run(rates, meta),
+        "dt_factor": getattr(params, "dt_factor", None),
         "box_length_m": getattr(params, "box_length", None),
         "body_height_m": getattr(params, "body_height", None),
         "natoms": meta.get("n_atoms"),
@@ -418,6 +435,9 @@ def main(argv=None) -> int:
         "--roughness-rms", type=float, default=None, help="rms height of each initial surface (m)"
     )
     ap.add_argument("--dump-interval", type=float, default=None, help="trajectory interval (s)")
+    ap.add_argument("--contact-viscosity", type=float, default=None,
+                    help="viscosity between touching, unlinked automata (Pa s; mca law)")
+    ap.add_argument("--dt-factor", type=float, default=None, help="timestep / sqrt(m/k)")
     ap.add_argument("--dim", type=int, default=2, choices=(2, 3))
     ap.add_argument("--np", type=int, default=1, help="MPI ranks per run")
     ap.add_argument(
@@ -474,6 +494,8 @@ def main(argv=None) -> int:
             ("bond_style", args.law),
             ("roughness_rms", args.roughness_rms),
             ("dump_interval", args.dump_interval),
+            ("contact_viscosity", args.contact_viscosity),
+            ("dt_factor", args.dt_factor),
         )
         if v is not None
     }
