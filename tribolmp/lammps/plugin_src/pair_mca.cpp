@@ -359,13 +359,9 @@ void PairMCA::compute(int eflag, int vflag)
   if (!fix) ensure_fix();
 
   double **x = atom->x, **v = atom->v, **f = atom->f;
-  double **omega = atom->omega, **torque = atom->torque;
-  double *radius = atom->radius, *rmass = atom->rmass;
-  tagint *tag = atom->tag;
-  tagint *mol = atom->molecule_flag ? atom->molecule : nullptr;
+  double **torque = atom->torque;
   const int nlocal = atom->nlocal;
   const int dim = domain->dimension;
-  const double dt = update->dt;
   const bool advance = (double) update->ntimestep > fix->last_commit;
   const bool init_links = advance && !fix->initialized && link_init != 0;
 
@@ -395,269 +391,16 @@ void PairMCA::compute(int eflag, int vflag)
   for (int i = 0; i < nlocal; i++)
     for (int k = 0; k < 8; k++) sacc[i][k] = 0.0;
 
-  double tally_links = 0.0, tally_cross = 0.0, tally_contacts = 0.0;
-  double **autom = fix->autom;
-
-  const int inum = list->inum;
-  int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
-
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    const double itag = (double) tag[i];
-    int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
-    int *cache_i = &cacheflat[cacheoff[i]];
-    int *mirror_i = &mirrorflat[cacheoff[i]];
-
-    for (int jj = 0; jj < jnum; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const double jtag = (double) tag[j];
-      if (jtag == itag) continue;
-      // two local automata: evaluated once, in the loop of the one with the smaller ID
-      const bool jlocal = j < nlocal;
-      if (jlocal && jtag < itag) continue;
-      const double dbar = radius[i] + radius[j];
-      const bool i_is_a = itag < jtag;
-      const double sg = i_is_a ? 1.0 : -1.0;
-      const int a = i_is_a ? i : j, b = i_is_a ? j : i;
-      // canonical relative position a -> b and velocities, bit-identical on every rank that
-      // evaluates the pair (canonical_geometry)
-      double R[3], Va[3], Vb[3];
-      const int *jimg = gimg[j];
-      if ((jimg[0] | jimg[1] | jimg[2]) == 0) {
-        // local partner or a plain copy of a remote atom: both ranks hold the same numbers
-        for (int c = 0; c < 3; c++) {
-          R[c] = x[b][c] - x[a][c];
-          Va[c] = v[a][c];
-          Vb[c] = v[b][c];
-        }
-      } else
-        canonical_geometry(a, b, jimg, i_is_a, R, Va, Vb);
-      const double dx = sg * R[0], dy = sg * R[1], dz = sg * R[2];
-      const double rsq = R[0] * R[0] + R[1] * R[1] + R[2] * R[2];
-      int k = cache_i[jj];
-      const bool same_body = !mol || mol[i] == mol[j];
-      if (k < 0) {
-        const int ikind = init_links ? initial_link_kind(i, tag[j], rsq, dbar, same_body) : FS::FREE;
-        const bool mklink = ikind != FS::FREE;
-        if (rsq >= dbar * dbar && !mklink) continue;
-        k = new_slot(i, jtag);
-        cache_i[jj] = k;
-        if (jlocal) {
-          const int kj = find_slot(j, itag);
-          mirror_i[jj] = (kj >= 0) ? kj : new_slot(j, itag);
-        }
-        double *s = fix->slot(i, k);
-        s[FS::S_KIND] = mklink ? ikind : FS::CONTACT;
-        s[FS::S_RP + 0] = R[0];
-        s[FS::S_RP + 1] = R[1];
-        s[FS::S_RP + 2] = R[2];
-        // an initial link is stress-free at its current length
-        if (mklink) s[FS::S_PN] = (std::sqrt(rsq) - dbar) / dbar;
-      }
-      double *s = fix->slot(i, k);
-      if (jlocal && mirror_i[jj] < 0) {
-        // j lost its copy (it held the pair as a ghost partner elsewhere): i's copy, which
-        // was evaluated, is the state; j gets it back at the end of this pair
-        const int kj = find_slot(j, itag);
-        mirror_i[jj] = (kj >= 0) ? kj : new_slot(j, itag);
-      }
-      double *sj = jlocal ? fix->slot(j, mirror_i[jj]) : nullptr;
-      const double r = std::sqrt(rsq);
-      const double ir = 1.0 / r;
-      const double n[3] = {R[0] * ir, R[1] * ir, R[2] * ir};
-      const double idbar = 1.0 / dbar;
-      const double eraw = r * idbar - 1.0;
-      int kind = static_cast<int>(s[FS::S_KIND]);
-
-      if (kind == FS::CONTACT && eraw >= 0.0) {    // contact opened: forget it
-        memset(s, 0, sizeof(double) * FS::NSLOT);
-        cache_i[jj] = -1;
-        if (sj) {
-          memset(sj, 0, sizeof(double) * FS::NSLOT);
-          mirror_i[jj] = -1;
-        }
-        continue;
-      }
-
-      const double ra = radius[a], rb = radius[b];
-      const double ws[3] = {ra * omega[a][0] + rb * omega[b][0], ra * omega[a][1] + rb * omega[b][1],
-                            ra * omega[a][2] + rb * omega[b][2]};
-      const double wxn[3] = {ws[1] * n[2] - ws[2] * n[1], ws[2] * n[0] - ws[0] * n[2],
-                             ws[0] * n[1] - ws[1] * n[0]};
-      // velocity of b's contact point relative to a's
-      const double vrel[3] = {Vb[0] - Va[0] - wxn[0], Vb[1] - Va[1] - wxn[1], Vb[2] - Va[2] - wxn[2]};
-      double *xi = &s[FS::S_XI];
-
-      if (advance) {
-        // tangential displacement: keep xi in the tangent plane (magnitude conserved),
-        // then add the tangential part of this step's contact-point displacement
-        const double xn = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2];
-        const double m0 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2];
-        if (xn != 0.0 && m0 > 0.0) {
-          // projection removes xn^2 of |xi|^2; restore the magnitude, sqrt(m0/(m0 - xn^2)).
-          // The normal turns by ~1e-6 rad per step, so q = xn^2/m0 ~ 1e-12 and the series
-          // 1 + q/2 + 3q^2/8 is exact to round-off (error 5q^3/16); the square root only if not
-          const double q = xn * xn / m0;
-          const double sc = (q < 1e-4) ? 1.0 + q * (0.5 + 0.375 * q)
-                                       : ((q < 1.0) ? std::sqrt(1.0 / (1.0 - q)) : 0.0);
-          for (int c = 0; c < 3; c++) xi[c] = sc * (xi[c] - xn * n[c]);
-        }
-        double du[3];
-        for (int c = 0; c < 3; c++) du[c] = R[c] - s[FS::S_RP + c] - dt * wxn[c];
-        const double dun = du[0] * n[0] + du[1] * n[1] + du[2] * n[2];
-        for (int c = 0; c < 3; c++) {
-          xi[c] += du[c] - dun * n[c];
-          s[FS::S_RP + c] = R[c];
-        }
-        if (kind == FS::LINK || kind == FS::WELD || kind == FS::ATTACH) {
-          // plastic offsets: the pending plastic strain increments of a and b
-          // (mean of the two halves of the pair) leave the elastic pair strain
-          const double *pa = &autom[a][FS::A_DEP], *pb = &autom[b][FS::A_DEP];
-          double D[6];
-          double dsum = 0.0;
-          for (int c = 0; c < 6; c++) {
-            D[c] = 0.5 * (pa[c] + pb[c]);
-            dsum += std::fabs(D[c]);
-          }
-          if (dsum > 0.0) {    // elastic automata have no offsets (the common case)
-            const double Dn[3] = {D[0] * n[0] + D[3] * n[1] + D[4] * n[2],
-                                  D[3] * n[0] + D[1] * n[1] + D[5] * n[2],
-                                  D[4] * n[0] + D[5] * n[1] + D[2] * n[2]};
-            const double nDn = n[0] * Dn[0] + n[1] * Dn[1] + n[2] * Dn[2];
-            s[FS::S_PN] += nDn;
-            for (int c = 0; c < 3; c++) xi[c] -= dbar * (Dn[c] - nDn * n[c]);
-          }
-          for (int c = 0; c < 3; c++) s[FS::S_TH + c] += dt * (omega[b][c] - omega[a][c]);
-        }
-      }
-
-      const double A = pair_area(dbar, dim);
-      const double sf = 2.0 * mat.G * idbar;    // shear_factor(mat, dbar)
-      // X of the previous step; a re-evaluation (run setup) uses the X the forces of the
-      // last committed step used, so it reproduces those forces exactly
-      const int ix = advance ? FS::A_X : FS::A_XU;
-      const double Xbar = 0.5 * (autom[a][ix] + autom[b][ix]);
-      const bool cross = !same_body;
-      double sn = 0.0, tau[3] = {0.0, 0.0, 0.0};
-
-      if (kind == FS::LINK || kind == FS::WELD || kind == FS::ATTACH) {
-        sn = link_normal(mat, eraw - s[FS::S_PN], Xbar);
-        for (int c = 0; c < 3; c++) tau[c] = sf * xi[c];
-        const double t2 = tau[0] * tau[0] + tau[1] * tau[1] + tau[2] * tau[2];
-        const double strength = (kind == FS::LINK) ? mat.s0 : mat.wfac * mat.s0;
-        if (advance && kind != FS::ATTACH && link_breaks_sq(sn, t2, strength)) {
-          if (i_is_a) {
-            autom[i][FS::A_LB] += 1.0;
-            if (cross) autom[i][FS::A_CB] += 1.0;
-          }
-          kind = FS::CONTACT;
-          s[FS::S_KIND] = kind;
-          s[FS::S_PN] = 0.0;
-          for (int c = 0; c < 3; c++) s[FS::S_TH + c] = 0.0;
-          if (eraw >= 0.0) {
-            memset(s, 0, sizeof(double) * FS::NSLOT);
-            cache_i[jj] = -1;
-            if (sj) {
-              memset(sj, 0, sizeof(double) * FS::NSLOT);
-              mirror_i[jj] = -1;
-            }
-            continue;
-          }
-        }
-      }
-      if (kind == FS::CONTACT) {
-        sn = contact_normal(mat, eraw);
-        for (int c = 0; c < 3; c++) tau[c] = sf * xi[c];
-        const double t2 = tau[0] * tau[0] + tau[1] * tau[1] + tau[2] * tau[2];
-        const double cap = mat.mu * std::fabs(sn);
-        // Coulomb: scale only when sliding (the square root only then)
-        const double cs = (t2 > cap * cap && t2 > 0.0) ? coulomb_scale(mat, sn, std::sqrt(t2)) : 1.0;
-        if (cs < 1.0)
-          for (int c = 0; c < 3; c++) {
-            xi[c] *= cs;
-            tau[c] *= cs;
-          }
-        const double t2c = (cs < 1.0) ? cap * cap : t2;
-        if (advance && welds(mat, sn, t2c)) {
-          kind = FS::WELD;
-          s[FS::S_KIND] = kind;
-          s[FS::S_PN] = weld_offset(mat, eraw, Xbar);
-          if (i_is_a) {
-            autom[i][FS::A_WF] += 1.0;
-            if (cross) autom[i][FS::A_CF] += 1.0;
-          }
-        }
-      }
-      const bool attached = (kind == FS::ATTACH);
-      const bool linked = (kind == FS::LINK || kind == FS::WELD || attached);
-
-      // elastic force on a
-      double Fe[3], Fd[3] = {0.0, 0.0, 0.0}, Ma[3] = {0.0, 0.0, 0.0};
-      for (int c = 0; c < 3; c++) Fe[c] = A * (sn * n[c] + tau[c]);
-      if (!linked) {
-        const double cv = viscous_factor(mat, A, dbar);
-        for (int c = 0; c < 3; c++) Fd[c] = cv * vrel[c];
-      } else {
-        if (s[FS::S_CD] == 0.0 && mat.damp > 0.0) {
-          // damping constants of the pair (fixed by masses and radii): once per link
-          const double ma = rmass[a], mb = rmass[b];
-          const double meff = ma * mb / (ma + mb);
-          const double kl = mat.Kc * A / dbar;
-          const double kr0 = rotational_stiffness(mat, A, dbar);
-          const double Ia = 0.4 * ma * ra * ra, Ib = 0.4 * mb * rb * rb;
-          s[FS::S_CD] = mat.damp * 2.0 * std::sqrt(kl * meff);
-          s[FS::S_CR] = mat.damp * 2.0 * std::sqrt(kr0 * Ia * Ib / (Ia + Ib));
-        }
-        const double cd = s[FS::S_CD], cr = s[FS::S_CR];
-        for (int c = 0; c < 3; c++) Fd[c] = cd * vrel[c];
-        const double kr = rotational_stiffness(mat, A, dbar);
-        for (int c = 0; c < 3; c++)
-          Ma[c] = kr * s[FS::S_TH + c] + cr * (omega[b][c] - omega[a][c]);
-      }
-
-      // force and torque on i (and on j when it is local: F_b = -F_a).  Both automata see the
-      // same n x F (n and F both change sign) and the same Love-Weber dyad n (x) F_e, so each is
-      // formed once; the torque of the tangential force is r n x F (n x n F_n = 0)
-      const double F[3] = {Fe[0] + Fd[0], Fe[1] + Fd[1], Fe[2] + Fd[2]};
-      const double nxF[3] = {n[1] * F[2] - n[2] * F[1], n[2] * F[0] - n[0] * F[2],
-                             n[0] * F[1] - n[1] * F[0]};
-      const double L[6] = {n[0] * Fe[0], n[1] * Fe[1], n[2] * Fe[2],
-                           0.5 * (n[0] * Fe[1] + n[1] * Fe[0]), 0.5 * (n[0] * Fe[2] + n[2] * Fe[0]),
-                           0.5 * (n[1] * Fe[2] + n[2] * Fe[1])};
-      const bool counted = linked && !attached;    // attachments (to rigid layers) are not links
-      auto apply = [&](int q, double sq, double delx, double dely, double delz) {
-        const double rq = radius[q];
-        f[q][0] += sq * F[0];
-        f[q][1] += sq * F[1];
-        f[q][2] += sq * F[2];
-        torque[q][0] += rq * nxF[0] + sq * Ma[0];
-        torque[q][1] += rq * nxF[1] + sq * Ma[1];
-        torque[q][2] += rq * nxF[2] + sq * Ma[2];
-        if (evflag) ev_tally_xyz_full(q, 0.0, 0.0, sq * F[0], sq * F[1], sq * F[2], delx, dely, delz);
-        double *acc = sacc[q];
-        for (int c = 0; c < 6; c++) acc[c] += rq * L[c];
-        if (counted) {
-          acc[6] += 1.0;
-          if (cross) acc[7] += 1.0;
-        }
-      };
-      const double si = i_is_a ? 1.0 : -1.0;
-      apply(i, si, -dx, -dy, -dz);
-      if (sj) {
-        apply(j, -si, dx, dy, dz);
-        memcpy(sj, s, sizeof(double) * FS::NSLOT);
-        sj[FS::S_TAG] = itag;
-      }
-      if (i_is_a && !attached) {
-        if (linked) {
-          tally_links += 1.0;
-          if (cross) tally_cross += 1.0;
-        } else
-          tally_contacts += 1.0;
-      }
-    }
+  double tally[3] = {0.0, 0.0, 0.0};
+  if (dim == 2) {
+    if (advance) pair_loop<2, true>(init_links, tally);
+    else pair_loop<2, false>(init_links, tally);
+  } else {
+    if (advance) pair_loop<3, true>(init_links, tally);
+    else pair_loop<3, false>(init_links, tally);
   }
+  const double tally_links = tally[0], tally_cross = tally[1], tally_contacts = tally[2];
+  double **autom = fix->autom;
 
   double cf = 0.0, cb = 0.0, lb = 0.0, wf = 0.0;
   for (int i = 0; i < nlocal; i++) {
@@ -694,6 +437,408 @@ void PairMCA::compute(int eflag, int vflag)
   pvector[4] = lb;
   pvector[5] = wf;
   pvector[6] = tally_contacts;
+}
+
+/* ----------------------------------------------------------------------
+   the pair loop, specialised for the dimension and for a committed step
+   (ADV: the pair state advances) or a re-evaluation.  In 2D every z
+   component of positions, velocities, tangential displacements, forces and
+   the x, y components of rotations are exactly zero (fix enforce2d), so the
+   2D instance leaves them out: the same numbers as the general arithmetic
+   (terms that are +-0 do not change a sum), with a third of the work.
+   Small vectors are kept in scalars, not arrays, so that the compiler keeps
+   them in registers.
+------------------------------------------------------------------------- */
+
+template <int DIM, bool ADV> void PairMCA::pair_loop(bool init_links, double *tally)
+{
+  constexpr bool D3 = (DIM == 3);
+  double **x = atom->x, **v = atom->v, **f = atom->f;
+  double **omega = atom->omega, **torque = atom->torque;
+  double *radius = atom->radius, *rmass = atom->rmass;
+  tagint *tag = atom->tag;
+  tagint *mol = atom->molecule_flag ? atom->molecule : nullptr;
+  const int nlocal = atom->nlocal;
+  const double dt = update->dt;
+  double **autom = fix->autom;
+  double **slots = fix->slots;
+  const double *h = domain->h;
+  const double *hr = domain->h_rate;
+  const bool vremap = domain->deform_vremap;
+  const double G2 = 2.0 * mat.G;
+  const double alpha = mat.alpha;
+  double tally_links = 0.0, tally_cross = 0.0, tally_contacts = 0.0;
+
+  const int inum = list->inum;
+  int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const double itag = (double) tag[i];
+    int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    int *cache_i = &cacheflat[cacheoff[i]];
+    int *mirror_i = &mirrorflat[cacheoff[i]];
+    double *slots_i = slots[i];
+
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double jtag = (double) tag[j];
+      if (jtag == itag) continue;
+      // two local automata: evaluated once, in the loop of the one with the smaller ID
+      const bool jlocal = j < nlocal;
+      if (jlocal && jtag < itag) continue;
+      const double dbar = radius[i] + radius[j];
+      const bool i_is_a = itag < jtag;
+      const double sg = i_is_a ? 1.0 : -1.0;
+      const int a = i_is_a ? i : j, b = i_is_a ? j : i;
+      // canonical relative position a -> b and velocities, bit-identical on every rank that
+      // evaluates the pair (see image_shifts)
+      double R0, R1, R2 = 0.0, Va0, Va1, Va2 = 0.0, Vb0, Vb1, Vb2 = 0.0;
+      const int *jimg = gimg[j];
+      if ((jimg[0] | jimg[1] | jimg[2]) == 0) {
+        // local partner or a plain copy of a remote atom: both ranks hold the same numbers
+        R0 = x[b][0] - x[a][0];
+        R1 = x[b][1] - x[a][1];
+        Va0 = v[a][0];
+        Va1 = v[a][1];
+        Vb0 = v[b][0];
+        Vb1 = v[b][1];
+        if (D3) {
+          R2 = x[b][2] - x[a][2];
+          Va2 = v[a][2];
+          Vb2 = v[b][2];
+        }
+      } else {
+        // image of b relative to a (j is the ghost: b's image if i is a, else minus a's)
+        const double n0 = i_is_a ? jimg[0] : -jimg[0], n1 = i_is_a ? jimg[1] : -jimg[1];
+        const double *xa = xo[a], *xb = xo[b];
+        if (D3) {
+          const double n2 = i_is_a ? jimg[2] : -jimg[2];
+          R0 = (xb[0] - xa[0]) + (n0 * h[0] + n1 * h[5] + n2 * h[4]);
+          R1 = (xb[1] - xa[1]) + (n1 * h[1] + n2 * h[3]);
+          R2 = (xb[2] - xa[2]) + n2 * h[2];
+          Va2 = xa[5];
+          Vb2 = xb[5];
+          if (vremap) {
+            // fix deform remap v: an image moves with the box's rate of deformation
+            Vb2 += n2 * hr[2];
+          }
+          Va0 = xa[3];
+          Va1 = xa[4];
+          Vb0 = xb[3];
+          Vb1 = xb[4];
+          if (vremap) {
+            Vb0 += n0 * hr[0] + n1 * hr[5] + n2 * hr[4];
+            Vb1 += n1 * hr[1] + n2 * hr[3];
+          }
+        } else {
+          R0 = (xb[0] - xa[0]) + (n0 * h[0] + n1 * h[5]);
+          R1 = (xb[1] - xa[1]) + n1 * h[1];
+          Va0 = xa[3];
+          Va1 = xa[4];
+          Vb0 = xb[3];
+          Vb1 = xb[4];
+          if (vremap) {
+            Vb0 += n0 * hr[0] + n1 * hr[5];
+            Vb1 += n1 * hr[1];
+          }
+        }
+      }
+      const double rsq = D3 ? R0 * R0 + R1 * R1 + R2 * R2 : R0 * R0 + R1 * R1;
+      int k = cache_i[jj];
+      const bool same_body = !mol || mol[i] == mol[j];
+      if (k < 0) {
+        const int ikind = init_links ? initial_link_kind(i, tag[j], rsq, dbar, same_body) : FS::FREE;
+        const bool mklink = ikind != FS::FREE;
+        if (rsq >= dbar * dbar && !mklink) continue;
+        k = new_slot(i, jtag);
+        cache_i[jj] = k;
+        if (jlocal) {
+          const int kj = find_slot(j, itag);
+          mirror_i[jj] = (kj >= 0) ? kj : new_slot(j, itag);
+        }
+        double *s = slots_i + k * FS::NSLOT;
+        s[FS::S_KIND] = mklink ? ikind : FS::CONTACT;
+        s[FS::S_RP + 0] = R0;
+        s[FS::S_RP + 1] = R1;
+        s[FS::S_RP + 2] = R2;
+        // an initial link is stress-free at its current length
+        if (mklink) s[FS::S_PN] = (std::sqrt(rsq) - dbar) / dbar;
+      }
+      double *s = slots_i + k * FS::NSLOT;
+      if (jlocal && mirror_i[jj] < 0) {
+        // j lost its copy (it held the pair as a ghost partner elsewhere): i's copy, which
+        // was evaluated, is the state; j gets it back at the end of this pair
+        const int kj = find_slot(j, itag);
+        mirror_i[jj] = (kj >= 0) ? kj : new_slot(j, itag);
+      }
+      double *sj = jlocal ? slots[j] + mirror_i[jj] * FS::NSLOT : nullptr;
+      const double r = std::sqrt(rsq);
+      const double ir = 1.0 / r;
+      const double n0 = R0 * ir, n1 = R1 * ir, n2 = D3 ? R2 * ir : 0.0;
+      const double idbar = 1.0 / dbar;
+      const double eraw = r * idbar - 1.0;
+      int kind = static_cast<int>(s[FS::S_KIND]);
+
+      if (kind == FS::CONTACT && eraw >= 0.0) {    // contact opened: forget it
+        memset(s, 0, sizeof(double) * FS::NSLOT);
+        cache_i[jj] = -1;
+        if (sj) {
+          memset(sj, 0, sizeof(double) * FS::NSLOT);
+          mirror_i[jj] = -1;
+        }
+        continue;
+      }
+
+      const double ra = radius[a], rb = radius[b];
+      const double *oa = omega[a], *ob = omega[b];
+      // ws = ra omega_a + rb omega_b, wxn = ws x n (2D: ws along z)
+      double wxn0, wxn1, wxn2 = 0.0;
+      if (D3) {
+        const double ws0 = ra * oa[0] + rb * ob[0], ws1 = ra * oa[1] + rb * ob[1],
+                     ws2 = ra * oa[2] + rb * ob[2];
+        wxn0 = ws1 * n2 - ws2 * n1;
+        wxn1 = ws2 * n0 - ws0 * n2;
+        wxn2 = ws0 * n1 - ws1 * n0;
+      } else {
+        const double ws2 = ra * oa[2] + rb * ob[2];
+        wxn0 = -(ws2 * n1);
+        wxn1 = ws2 * n0;
+      }
+      // velocity of b's contact point relative to a's
+      const double vr0 = Vb0 - Va0 - wxn0, vr1 = Vb1 - Va1 - wxn1, vr2 = D3 ? Vb2 - Va2 - wxn2 : 0.0;
+      double *xi = &s[FS::S_XI];
+      double xi0 = xi[0], xi1 = xi[1], xi2 = D3 ? xi[2] : 0.0;
+      const bool linked0 = (kind == FS::LINK || kind == FS::WELD || kind == FS::ATTACH);
+      double pn = s[FS::S_PN];
+
+      if (ADV) {
+        // tangential displacement: keep xi in the tangent plane (magnitude conserved),
+        // then add the tangential part of this step's contact-point displacement
+        const double xn = D3 ? xi0 * n0 + xi1 * n1 + xi2 * n2 : xi0 * n0 + xi1 * n1;
+        const double m0 = D3 ? xi0 * xi0 + xi1 * xi1 + xi2 * xi2 : xi0 * xi0 + xi1 * xi1;
+        if (xn != 0.0 && m0 > 0.0) {
+          // projection removes xn^2 of |xi|^2; restore the magnitude, sqrt(m0/(m0 - xn^2)).
+          // The normal turns by ~1e-6 rad per step, so q = xn^2/m0 ~ 1e-12 and the series
+          // 1 + q/2 + 3q^2/8 is exact to round-off (error 5q^3/16); the square root only if not
+          const double q = xn * xn / m0;
+          const double sc = (q < 1e-4) ? 1.0 + q * (0.5 + 0.375 * q)
+                                       : ((q < 1.0) ? std::sqrt(1.0 / (1.0 - q)) : 0.0);
+          xi0 = sc * (xi0 - xn * n0);
+          xi1 = sc * (xi1 - xn * n1);
+          if (D3) xi2 = sc * (xi2 - xn * n2);
+        }
+        double *rp = &s[FS::S_RP];
+        const double du0 = R0 - rp[0] - dt * wxn0, du1 = R1 - rp[1] - dt * wxn1;
+        const double du2 = D3 ? R2 - rp[2] - dt * wxn2 : 0.0;
+        const double dun = D3 ? du0 * n0 + du1 * n1 + du2 * n2 : du0 * n0 + du1 * n1;
+        xi0 += du0 - dun * n0;
+        xi1 += du1 - dun * n1;
+        rp[0] = R0;
+        rp[1] = R1;
+        if (D3) {
+          xi2 += du2 - dun * n2;
+          rp[2] = R2;
+        }
+        if (linked0) {
+          // plastic offsets: the pending plastic strain increments of a and b
+          // (mean of the two halves of the pair) leave the elastic pair strain
+          const double *pa = &autom[a][FS::A_DEP], *pb = &autom[b][FS::A_DEP];
+          // (tensor order xx yy zz xy xz yz; in 2D the zz increment does not act on in-plane
+          // pairs and xz, yz vanish)
+          const double D0 = 0.5 * (pa[0] + pb[0]), D1 = 0.5 * (pa[1] + pb[1]),
+                       D3xy = 0.5 * (pa[3] + pb[3]);
+          if (D3) {
+            const double D2 = 0.5 * (pa[2] + pb[2]), D4 = 0.5 * (pa[4] + pb[4]),
+                         D5 = 0.5 * (pa[5] + pb[5]);
+            const double dsum = std::fabs(D0) + std::fabs(D1) + std::fabs(D2) + std::fabs(D3xy) +
+                std::fabs(D4) + std::fabs(D5);
+            if (dsum > 0.0) {    // elastic automata have no offsets (the common case)
+              const double Dn0 = D0 * n0 + D3xy * n1 + D4 * n2, Dn1 = D3xy * n0 + D1 * n1 + D5 * n2,
+                           Dn2 = D4 * n0 + D5 * n1 + D2 * n2;
+              const double nDn = n0 * Dn0 + n1 * Dn1 + n2 * Dn2;
+              pn += nDn;
+              xi0 -= dbar * (Dn0 - nDn * n0);
+              xi1 -= dbar * (Dn1 - nDn * n1);
+              xi2 -= dbar * (Dn2 - nDn * n2);
+            }
+            s[FS::S_TH + 0] += dt * (ob[0] - oa[0]);
+            s[FS::S_TH + 1] += dt * (ob[1] - oa[1]);
+          } else {
+            const double dsum = std::fabs(D0) + std::fabs(D1) + std::fabs(D3xy);
+            if (dsum > 0.0) {
+              const double Dn0 = D0 * n0 + D3xy * n1, Dn1 = D3xy * n0 + D1 * n1;
+              const double nDn = n0 * Dn0 + n1 * Dn1;
+              pn += nDn;
+              xi0 -= dbar * (Dn0 - nDn * n0);
+              xi1 -= dbar * (Dn1 - nDn * n1);
+            }
+          }
+          s[FS::S_TH + 2] += dt * (ob[2] - oa[2]);
+        }
+      }
+
+      const double A = pair_area(dbar, DIM);
+      const double sf = G2 * idbar;    // shear_factor(mat, dbar)
+      // X of the previous step; a re-evaluation (run setup) uses the X the forces of the
+      // last committed step used, so it reproduces those forces exactly
+      const int ix = ADV ? FS::A_X : FS::A_XU;
+      const double Xbar = 0.5 * (autom[a][ix] + autom[b][ix]);
+      const bool cross = !same_body;
+      double sn = 0.0, t0 = 0.0, t1 = 0.0, t2v = 0.0;
+
+      if (linked0) {
+        sn = G2 * (eraw - pn) + alpha * Xbar;    // link_normal
+        t0 = sf * xi0;
+        t1 = sf * xi1;
+        if (D3) t2v = sf * xi2;
+        const double t2 = D3 ? t0 * t0 + t1 * t1 + t2v * t2v : t0 * t0 + t1 * t1;
+        const double strength = (kind == FS::LINK) ? mat.s0 : mat.wfac * mat.s0;
+        if (ADV && kind != FS::ATTACH && link_breaks_sq(sn, t2, strength)) {
+          if (i_is_a) {
+            autom[i][FS::A_LB] += 1.0;
+            if (cross) autom[i][FS::A_CB] += 1.0;
+          }
+          kind = FS::CONTACT;
+          s[FS::S_KIND] = kind;
+          pn = 0.0;
+          for (int c = 0; c < 3; c++) s[FS::S_TH + c] = 0.0;
+          if (eraw >= 0.0) {
+            memset(s, 0, sizeof(double) * FS::NSLOT);
+            cache_i[jj] = -1;
+            if (sj) {
+              memset(sj, 0, sizeof(double) * FS::NSLOT);
+              mirror_i[jj] = -1;
+            }
+            continue;
+          }
+        }
+      }
+      if (kind == FS::CONTACT) {
+        sn = contact_normal(mat, eraw);
+        t0 = sf * xi0;
+        t1 = sf * xi1;
+        if (D3) t2v = sf * xi2;
+        const double t2 = D3 ? t0 * t0 + t1 * t1 + t2v * t2v : t0 * t0 + t1 * t1;
+        const double cap = mat.mu * std::fabs(sn);
+        // Coulomb: scale only when sliding (the square root only then)
+        const double cs = (t2 > cap * cap && t2 > 0.0) ? coulomb_scale(mat, sn, std::sqrt(t2)) : 1.0;
+        if (cs < 1.0) {
+          xi0 *= cs;
+          t0 *= cs;
+          xi1 *= cs;
+          t1 *= cs;
+          if (D3) {
+            xi2 *= cs;
+            t2v *= cs;
+          }
+        }
+        const double t2c = (cs < 1.0) ? cap * cap : t2;
+        if (ADV && welds(mat, sn, t2c)) {
+          kind = FS::WELD;
+          s[FS::S_KIND] = kind;
+          pn = weld_offset(mat, eraw, Xbar);
+          if (i_is_a) {
+            autom[i][FS::A_WF] += 1.0;
+            if (cross) autom[i][FS::A_CF] += 1.0;
+          }
+        }
+      }
+      xi[0] = xi0;
+      xi[1] = xi1;
+      if (D3) xi[2] = xi2;
+      s[FS::S_PN] = pn;
+      const bool attached = (kind == FS::ATTACH);
+      const bool linked = (kind == FS::LINK || kind == FS::WELD || attached);
+
+      // elastic force on a
+      const double Fe0 = A * (sn * n0 + t0), Fe1 = A * (sn * n1 + t1);
+      const double Fe2 = D3 ? A * (sn * n2 + t2v) : 0.0;
+      double Fd0, Fd1, Fd2 = 0.0, Ma0 = 0.0, Ma1 = 0.0, Ma2;
+      if (!linked) {
+        const double cv = viscous_factor(mat, A, dbar);
+        Fd0 = cv * vr0;
+        Fd1 = cv * vr1;
+        if (D3) Fd2 = cv * vr2;
+        Ma2 = 0.0;
+      } else {
+        if (s[FS::S_CD] == 0.0 && mat.damp > 0.0) {
+          // damping constants of the pair (fixed by masses and radii): once per link
+          const double ma = rmass[a], mb = rmass[b];
+          const double meff = ma * mb / (ma + mb);
+          const double kl = mat.Kc * A / dbar;
+          const double kr0 = rotational_stiffness(mat, A, dbar);
+          const double Ia = 0.4 * ma * ra * ra, Ib = 0.4 * mb * rb * rb;
+          s[FS::S_CD] = mat.damp * 2.0 * std::sqrt(kl * meff);
+          s[FS::S_CR] = mat.damp * 2.0 * std::sqrt(kr0 * Ia * Ib / (Ia + Ib));
+        }
+        const double cd = s[FS::S_CD], cr = s[FS::S_CR];
+        Fd0 = cd * vr0;
+        Fd1 = cd * vr1;
+        if (D3) Fd2 = cd * vr2;
+        const double kr = rotational_stiffness(mat, A, dbar);
+        const double *th = &s[FS::S_TH];
+        if (D3) {
+          Ma0 = kr * th[0] + cr * (ob[0] - oa[0]);
+          Ma1 = kr * th[1] + cr * (ob[1] - oa[1]);
+        }
+        Ma2 = kr * th[2] + cr * (ob[2] - oa[2]);
+      }
+
+      // force and torque on i (and on j when it is local: F_b = -F_a).  Both automata see the
+      // same n x F (n and F both change sign) and the same Love-Weber dyad n (x) F_e, so each is
+      // formed once; the torque of the tangential force is r n x F (n x n F_n = 0)
+      const double F0 = Fe0 + Fd0, F1 = Fe1 + Fd1, F2 = D3 ? Fe2 + Fd2 : 0.0;
+      const double nxF0 = D3 ? n1 * F2 - n2 * F1 : 0.0, nxF1 = D3 ? n2 * F0 - n0 * F2 : 0.0;
+      const double nxF2 = n0 * F1 - n1 * F0;
+      const double L0 = n0 * Fe0, L1 = n1 * Fe1, L3 = 0.5 * (n0 * Fe1 + n1 * Fe0);
+      const double L2 = D3 ? n2 * Fe2 : 0.0, L4 = D3 ? 0.5 * (n0 * Fe2 + n2 * Fe0) : 0.0,
+                   L5 = D3 ? 0.5 * (n1 * Fe2 + n2 * Fe1) : 0.0;
+      const bool counted = linked && !attached;    // attachments (to rigid layers) are not links
+      const double dx = sg * R0, dy = sg * R1, dz = sg * R2;
+      auto apply = [&](int q, double sq, double delx, double dely, double delz) {
+        const double rq = radius[q];
+        double *fq = f[q], *tq = torque[q], *acc = sacc[q];
+        fq[0] += sq * F0;
+        fq[1] += sq * F1;
+        tq[2] += rq * nxF2 + sq * Ma2;
+        acc[0] += rq * L0;
+        acc[1] += rq * L1;
+        acc[3] += rq * L3;
+        if (D3) {
+          fq[2] += sq * F2;
+          tq[0] += rq * nxF0 + sq * Ma0;
+          tq[1] += rq * nxF1 + sq * Ma1;
+          acc[2] += rq * L2;
+          acc[4] += rq * L4;
+          acc[5] += rq * L5;
+        }
+        if (evflag) ev_tally_xyz_full(q, 0.0, 0.0, sq * F0, sq * F1, sq * F2, delx, dely, delz);
+        if (counted) {
+          acc[6] += 1.0;
+          if (cross) acc[7] += 1.0;
+        }
+      };
+      const double si = i_is_a ? 1.0 : -1.0;
+      apply(i, si, -dx, -dy, -dz);
+      if (sj) {
+        apply(j, -si, dx, dy, dz);
+        memcpy(sj, s, sizeof(double) * FS::NSLOT);
+        sj[FS::S_TAG] = itag;
+      }
+      if (i_is_a && !attached) {
+        if (linked) {
+          tally_links += 1.0;
+          if (cross) tally_cross += 1.0;
+        } else
+          tally_contacts += 1.0;
+      }
+    }
+  }
+  tally[0] = tally_links;
+  tally[1] = tally_cross;
+  tally[2] = tally_contacts;
 }
 
 /* ----------------------------------------------------------------------
