@@ -88,6 +88,21 @@ void FixMCAState::restart(char *buf)
                maxpartner, mp, mp);
 }
 
+/* pending mirror copies (see fix_mca_state.h): j's copy is i's with the partner tag of j */
+
+void FixMCAState::sync_mirrors()
+{
+  const int n = static_cast<int>(mirrors.size());
+  tagint *tag = atom->tag;
+  for (int q = 0; q < n; q += 4) {
+    const int i = mirrors[q], j = mirrors[q + 2];
+    double *sj = slot(j, mirrors[q + 3]);
+    memcpy(sj, slot(i, mirrors[q + 1]), sizeof(double) * NSLOT);
+    sj[S_TAG] = (double) tag[i];
+  }
+  mirrors.clear();
+}
+
 /* per-atom arrays */
 
 void FixMCAState::grow_arrays(int nmax)
@@ -106,6 +121,7 @@ void FixMCAState::grow_arrays(int nmax)
 
 void FixMCAState::copy_arrays(int i, int j, int /*delflag*/)
 {
+  sync_mirrors();
   memcpy(slots[j], slots[i], sizeof(double) * maxpartner * NSLOT);
   memcpy(autom[j], autom[i], sizeof(double) * NAUTO);
   memcpy(out[j], out[i], sizeof(double) * NOUT);
@@ -120,6 +136,7 @@ void FixMCAState::set_arrays(int i)
 
 int FixMCAState::pack_exchange(int i, double *buf)
 {
+  sync_mirrors();
   const int ns = maxpartner * NSLOT;
   memcpy(buf, slots[i], sizeof(double) * ns);
   memcpy(buf + ns, autom[i], sizeof(double) * NAUTO);
@@ -137,6 +154,7 @@ int FixMCAState::unpack_exchange(int nlocal, double *buf)
 
 int FixMCAState::pack_restart(int i, double *buf)
 {
+  sync_mirrors();
   const int ns = maxpartner * NSLOT;
   buf[0] = ns + NAUTO + 1;
   memcpy(buf + 1, slots[i], sizeof(double) * ns);

@@ -54,7 +54,7 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   manybody_flag = 1;
   no_virial_fdotr_compute = 1;
   finitecutflag = 1;
-  comm_forward = 14;
+  comm_forward = 13;
   nextra = NTALLY;
   pvector = new double[NTALLY];
   for (int k = 0; k < NTALLY; k++) pvector[k] = 0.0;
@@ -65,6 +65,7 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   sacc = nullptr;
   maxsacc = 0;
   xo = nullptr;
+  pin = nullptr;
   gimg = nullptr;
   maxxo = 0;
 }
@@ -77,6 +78,7 @@ PairMCA::~PairMCA()
   memory->destroy(cacheoff);
   memory->destroy(sacc);
   memory->destroy(xo);
+  memory->destroy(pin);
   memory->destroy(gimg);
   if (allocated) {
     memory->destroy(setflag);
@@ -368,20 +370,33 @@ void PairMCA::compute(int eflag, int vflag)
   if (atom->nmax > maxxo) {
     maxxo = atom->nmax;
     memory->destroy(xo);
+    memory->destroy(pin);
     memory->destroy(gimg);
     memory->create(xo, maxxo, 6, "pair:mca:xo");
+    memory->create(pin, maxxo, 8, "pair:mca:pin");
     memory->create(gimg, maxxo, 3, "pair:mca:gimg");
   }
-  for (int i = 0; i < nlocal; i++)
+  // the pair inputs of each automaton in one compact row (ghosts receive them): the mean-stress
+  // term X (of the previous step; a re-evaluation uses the X the forces of the last committed
+  // step used, so it reproduces those forces exactly) and the pending plastic strain increment
+  double **autom = fix->autom;
+  const int ix = advance ? FS::A_X : FS::A_XU;
+  for (int i = 0; i < nlocal; i++) {
     for (int c = 0; c < 3; c++) {
       xo[i][c] = x[i][c];
       xo[i][3 + c] = v[i][c];
     }
+    pin[i][0] = autom[i][ix];
+    for (int c = 0; c < 6; c++) pin[i][1 + c] = autom[i][FS::A_DEP + c];
+  }
   comm->forward_comm(this);
   if (neighbor->ago == 0 || cacheoff == nullptr) {
+    // the mirror copies of the pair states must be current before the slots are re-mapped
+    fix->sync_mirrors();
     image_shifts();
     rebuild_cache();
-  }
+  } else
+    fix->clear_mirrors();    // this step's loop lists the same pairs again
 
   if (nlocal > maxsacc) {
     maxsacc = atom->nmax;
@@ -400,7 +415,6 @@ void PairMCA::compute(int eflag, int vflag)
     else pair_loop<3, false>(init_links, tally);
   }
   const double tally_links = tally[0], tally_cross = tally[1], tally_contacts = tally[2];
-  double **autom = fix->autom;
 
   double cf = 0.0, cb = 0.0, lb = 0.0, wf = 0.0;
   for (int i = 0; i < nlocal; i++) {
@@ -644,7 +658,7 @@ template <int DIM, bool ADV> void PairMCA::pair_loop(bool init_links, double *ta
         if (linked0) {
           // plastic offsets: the pending plastic strain increments of a and b
           // (mean of the two halves of the pair) leave the elastic pair strain
-          const double *pa = &autom[a][FS::A_DEP], *pb = &autom[b][FS::A_DEP];
+          const double *pa = &pin[a][1], *pb = &pin[b][1];
           // (tensor order xx yy zz xy xz yz; in 2D the zz increment does not act on in-plane
           // pairs and xz, yz vanish)
           const double D0 = 0.5 * (pa[0] + pb[0]), D1 = 0.5 * (pa[1] + pb[1]),
@@ -681,10 +695,7 @@ template <int DIM, bool ADV> void PairMCA::pair_loop(bool init_links, double *ta
 
       const double A = pair_area(dbar, DIM);
       const double sf = G2 * idbar;    // shear_factor(mat, dbar)
-      // X of the previous step; a re-evaluation (run setup) uses the X the forces of the
-      // last committed step used, so it reproduces those forces exactly
-      const int ix = ADV ? FS::A_X : FS::A_XU;
-      const double Xbar = 0.5 * (autom[a][ix] + autom[b][ix]);
+      const double Xbar = 0.5 * (pin[a][0] + pin[b][0]);    // (see compute)
       const bool cross = !same_body;
       double sn = 0.0, t0 = 0.0, t1 = 0.0, t2v = 0.0;
 
@@ -824,8 +835,8 @@ template <int DIM, bool ADV> void PairMCA::pair_loop(bool init_links, double *ta
       apply(i, si, -dx, -dy, -dz);
       if (sj) {
         apply(j, -si, dx, dy, dz);
-        memcpy(sj, s, sizeof(double) * FS::NSLOT);
-        sj[FS::S_TAG] = itag;
+        // j's copy of the state: written when it is next read (fix mca/state, sync_mirrors)
+        fix->add_mirror(i, k, j, mirror_i[jj]);
       }
       if (i_is_a && !attached) {
         if (linked) {
@@ -893,11 +904,9 @@ int PairMCA::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, 
 {
   int m = 0;
   for (int q = 0; q < n; q++) {
-    const double *am = fix->autom[list[q]];
-    buf[m++] = am[FS::A_X];
-    buf[m++] = am[FS::A_XU];
-    for (int c = 0; c < 6; c++) buf[m++] = am[FS::A_DEP + c];
-    for (int c = 0; c < 6; c++) buf[m++] = xo[list[q]][c];
+    const double *pq = pin[list[q]], *xq = xo[list[q]];
+    for (int c = 0; c < 7; c++) buf[m++] = pq[c];
+    for (int c = 0; c < 6; c++) buf[m++] = xq[c];
   }
   return m;
 }
@@ -906,11 +915,9 @@ void PairMCA::unpack_forward_comm(int n, int first, double *buf)
 {
   int m = 0;
   for (int i = first; i < first + n; i++) {
-    double *am = fix->autom[i];
-    am[FS::A_X] = buf[m++];
-    am[FS::A_XU] = buf[m++];
-    for (int c = 0; c < 6; c++) am[FS::A_DEP + c] = buf[m++];
-    for (int c = 0; c < 6; c++) xo[i][c] = buf[m++];
+    double *pq = pin[i], *xq = xo[i];
+    for (int c = 0; c < 7; c++) pq[c] = buf[m++];
+    for (int c = 0; c < 6; c++) xq[c] = buf[m++];
   }
 }
 

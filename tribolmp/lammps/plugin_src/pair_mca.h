@@ -65,6 +65,7 @@ class PairMCA : public Pair {
   int maxsacc;
   int coeffset;
   double **xo;          // owner coordinates and velocities (x, v) of local and ghost atoms
+  double **pin;         // pair inputs of local and ghost atoms: X, pending plastic increment[6]
   int **gimg;           // periodic image (integers) of each ghost relative to its owner
   int maxxo;
 
