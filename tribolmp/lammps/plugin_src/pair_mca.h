@@ -79,7 +79,7 @@ class PairMCA : public Pair {
   int new_slot(int i, double jtag);
   int initial_link_kind(int i, tagint jtag, double rsq, double dbar, bool same_body);
   void automaton_update(int i, bool advance);
-  template <int DIM, bool ADV> void pair_loop(bool init_links, double *tally);
+  template <int DIM, bool ADV, bool UNI> void pair_loop(bool init_links, double *tally, double runi);
 };
 
 }    // namespace LAMMPS_NS
