@@ -514,6 +514,13 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
     int *cache_i = &cacheflat[cacheoff[i]];
     int *mirror_i = &mirrorflat[cacheoff[i]];
     double *slots_i = slots[i];
+    if (ii + 1 < inum) {
+      // the slots of the next automaton (the loop over automata is the memory stream that
+      // the hardware prefetcher does not see: rows are maxpartner slots apart)
+      const double *nxt = slots[ilist[ii + 1]];
+      const int npf = ((D3 ? 12 : 6) < fix->maxpartner ? (D3 ? 12 : 6) : fix->maxpartner) * FS::NSLOT;
+      for (int b = 0; b < npf; b += 8) __builtin_prefetch(nxt + b);
+    }
 
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
@@ -828,33 +835,55 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
                    L5 = D3 ? 0.5 * (n1 * Fe2 + n2 * Fe1) : 0.0;
       const bool counted = linked && !attached;    // attachments (to rigid layers) are not links
       const double dx = sg * R0, dy = sg * R1, dz = sg * R2;
-      auto apply = [&](int q, double sq, double delx, double dely, double delz) {
+      // F_b = -F_a and M_b = -M_a: the signed force and moment once, added to i and
+      // subtracted from j (x - y is x + (-1) y exactly); with one radius the torque of the
+      // tangential force and the Love-Weber sums are the same for both automata
+      const double si = i_is_a ? 1.0 : -1.0;
+      const double Fs0 = si * F0, Fs1 = si * F1, Fs2 = D3 ? si * F2 : 0.0;
+      const double Ms0 = D3 ? si * Ma0 : 0.0, Ms1 = D3 ? si * Ma1 : 0.0, Ms2 = si * Ma2;
+      auto apply = [&](int q, bool plus, double delx, double dely, double delz) {
         const double rq = UNI ? runi : radius[q];
         double *fq = f[q], *tq = torque[q], *acc = sacc[q];
-        fq[0] += sq * F0;
-        fq[1] += sq * F1;
-        tq[2] += rq * nxF2 + sq * Ma2;
+        const double T2 = rq * nxF2;
+        if (plus) {
+          fq[0] += Fs0;
+          fq[1] += Fs1;
+          tq[2] += T2 + Ms2;
+        } else {
+          fq[0] -= Fs0;
+          fq[1] -= Fs1;
+          tq[2] += T2 - Ms2;
+        }
         acc[0] += rq * L0;
         acc[1] += rq * L1;
         acc[3] += rq * L3;
         if (D3) {
-          fq[2] += sq * F2;
-          tq[0] += rq * nxF0 + sq * Ma0;
-          tq[1] += rq * nxF1 + sq * Ma1;
+          const double T0 = rq * nxF0, T1 = rq * nxF1;
+          if (plus) {
+            fq[2] += Fs2;
+            tq[0] += T0 + Ms0;
+            tq[1] += T1 + Ms1;
+          } else {
+            fq[2] -= Fs2;
+            tq[0] += T0 - Ms0;
+            tq[1] += T1 - Ms1;
+          }
           acc[2] += rq * L2;
           acc[4] += rq * L4;
           acc[5] += rq * L5;
         }
-        if (evflag) ev_tally_xyz_full(q, 0.0, 0.0, sq * F0, sq * F1, sq * F2, delx, dely, delz);
+        if (evflag) {
+          const double sq = plus ? si : -si;
+          ev_tally_xyz_full(q, 0.0, 0.0, sq * F0, sq * F1, sq * F2, delx, dely, delz);
+        }
         if (counted) {
           acc[6] += 1.0;
           if (cross) acc[7] += 1.0;
         }
       };
-      const double si = i_is_a ? 1.0 : -1.0;
-      apply(i, si, -dx, -dy, -dz);
+      apply(i, true, -dx, -dy, -dz);
       if (sj) {
-        apply(j, -si, dx, dy, dz);
+        apply(j, false, dx, dy, dz);
         // j's copy of the state: written when it is next read (fix mca/state, sync_mirrors)
         fix->add_mirror(i, k, j, mirror_i[jj]);
       }
