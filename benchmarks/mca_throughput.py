@@ -34,6 +34,10 @@ throughput by up to ~2.5x (issue 7's feasibility numbers).
 
 The machine is shared: ``uptime``'s load average is recorded next to each row.
 
+``--reference-plugin SO [--reference-label NAME]`` adds a third row per system: the mca law
+with another build of the plugin (e.g. the sources of an older commit compiled into another
+cache folder), timed in the same run, so that a before/after ratio shares the machine's load.
+
 Usage: ``python benchmarks/mca_throughput.py [--quick] [--out CSV]`` (laws),
 ``python benchmarks/mca_throughput.py --interfaces [--quick]``.
 """
@@ -58,6 +62,7 @@ SIZES = (("2k", 150e-9, 30e-9, 6000), ("10k", 400e-9, 62e-9, 1500), ("40k", 800e
 QUICK = (("2k", 150e-9, 30e-9, 1500), ("10k", 400e-9, 62e-9, 300))
 
 _LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
+_CPU = re.compile(r"([0-9.]+)% CPU use with")
 
 
 def _load() -> float:
@@ -148,22 +153,51 @@ def _block_run(variables: dict, out: Path, steps: int) -> dict:
     if proc.returncode != 0:
         raise RuntimeError(f"block run failed: {(proc.stderr or proc.stdout)[-800:]}")
     t, procs, nsteps, atoms = _loop(out / "block.log")
-    return {"loop_s": t, "steps": nsteps, "atoms": atoms, "rate": atoms * nsteps / t, "load": load}
+    cpu = _CPU.findall((out / "block.log").read_text())
+    # share of a core the run got (LAMMPS's "% CPU use"); the machine is shared, so the rate per
+    # CPU second is the steadier figure when other jobs take turns on the cores
+    cpu_pct = float(cpu[-1]) if cpu else float("nan")
+    return {
+        "loop_s": t,
+        "steps": nsteps,
+        "atoms": atoms,
+        "rate": atoms * nsteps / t,
+        "cpu_pct": cpu_pct,
+        "rate_cpu": atoms * nsteps / (t * cpu_pct / 100.0),
+        "load": load,
+    }
 
 
-def laws_main(quick: bool, csv_path: Path, loop_s: float) -> int:
-    """Mca vs bpm/spring/plastic on the same 2D and 3D blocks; print and write the CSV."""
+def laws_main(
+    quick: bool,
+    csv_path: Path,
+    loop_s: float,
+    reference: str | None = None,
+    reference_label: str = "reference",
+) -> int:
+    """Mca vs bpm/spring/plastic on the same 2D and 3D blocks; print and write the CSV.
+
+    ``reference``: path of another build of the mca plugin (e.g. of an older commit), run on
+    the same blocks in the same loop, so that before/after ratios share the machine's load.
+    """
     from tribolmp.lammps.material_test import block_setup
 
+    laws = ["bpm/spring/plastic", "mca"] + (["mca@" + reference_label] if reference else [])
     rows = []
-    print(f"{'dim':>3} {'law':>18} {'automata':>8} {'steps':>7} {'loop_s':>7} "
-          f"{'automaton-steps/s':>17} {'dt_ns':>9} {'ns/h':>7} {'ratio':>6} {'load':>5}")
+    print(
+        f"{'dim':>3} {'law':>18} {'automata':>8} {'steps':>7} {'loop_s':>7} "
+        f"{'automaton-steps/s':>17} {'dt_ns':>9} {'ns/h':>7} {'ratio':>6} {'cpu%':>5} "
+        f"{'ratio/cpu-s':>11} {'load':>5}"
+    )
     with tempfile.TemporaryDirectory(prefix="mca_laws_") as tmp:
-        for dim, n in (LAW_SYSTEMS_QUICK if quick else LAW_SYSTEMS):
+        for dim, n in LAW_SYSTEMS_QUICK if quick else LAW_SYSTEMS:
             res = {}
-            for law in ("bpm/spring/plastic", "mca"):
-                out = Path(tmp) / f"{dim}d_{law.replace('/', '_')}"
-                v = {k: str(x) for k, x in block_setup(law, dim, out, n=n).items()}
+            for law in laws:
+                out = Path(tmp) / f"{dim}d_{law.replace('/', '_').replace('@', '_')}"
+                base = law.split("@")[0]
+                v = {k: str(x) for k, x in block_setup(base, dim, out, n=n).items()}
+                if "@" in law:
+                    v["plugin"] = str(Path(reference).resolve())
                 v.update(drive="deform", vshear="5.0")
                 cal = _block_run(v, out / "cal", 200 if quick else 500)
                 steps = max(200, int(loop_s * cal["rate"] / cal["atoms"]))
@@ -172,10 +206,14 @@ def laws_main(quick: bool, csv_path: Path, loop_s: float) -> int:
                 res[law] = r
             for law, r in res.items():
                 ratio = r["rate"] / res["bpm/spring/plastic"]["rate"]
+                ratio_cpu = r["rate_cpu"] / res["bpm/spring/plastic"]["rate_cpu"]
                 ns_h = r["rate"] / r["atoms"] * r["dt_ns"] * 3600.0
                 row = {
                     "dim": dim,
-                    "law": law,
+                    "law": law.split("@")[0],
+                    "plugin": (law.split("@", 1)[1] if "@" in law else "current")
+                    if law.startswith("mca")
+                    else "",
                     "automata": r["atoms"],
                     "steps": r["steps"],
                     "loop_s": r["loop_s"],
@@ -183,12 +221,17 @@ def laws_main(quick: bool, csv_path: Path, loop_s: float) -> int:
                     "dt_ns": r["dt_ns"],
                     "simulated_ns_per_hour": ns_h,
                     "ratio_vs_bpm": ratio,
+                    "cpu_use_pct": r["cpu_pct"],
+                    "automaton_steps_per_cpu_s": r["rate_cpu"],
+                    "ratio_vs_bpm_per_cpu_s": ratio_cpu,
                     "load_avg_1min": r["load"],
                 }
                 rows.append(row)
-                print(f"{dim:>3} {law:>18} {r['atoms']:>8} {r['steps']:>7} {r['loop_s']:>7.1f} "
-                      f"{r['rate']:>17.4g} {r['dt_ns']:>9.3g} {ns_h:>7.3g} {ratio:>6.2f} "
-                      f"{r['load']:>5.1f}")
+                print(
+                    f"{dim:>3} {law:>18} {r['atoms']:>8} {r['steps']:>7} {r['loop_s']:>7.1f} "
+                    f"{r['rate']:>17.4g} {r['dt_ns']:>9.3g} {ns_h:>7.3g} {ratio:>6.2f} "
+                    f"{r['cpu_pct']:>5.0f} {ratio_cpu:>11.2f} {r['load']:>5.1f}"
+                )
     write_csv(csv_path, rows)
     print(f"wrote {csv_path}")
     return 0
@@ -202,6 +245,16 @@ def main(argv: list[str] | None = None) -> int:
         "--interfaces", action="store_true", help="Python vs lmp vs 2 ranks (friction deck)"
     )
     ap.add_argument("--loop", type=float, default=12.0, help="target loop time per law run (s)")
+    ap.add_argument(
+        "--reference-plugin",
+        default=None,
+        help="another build of the mca plugin (mcaplugin.so) timed on the same blocks, same run",
+    )
+    ap.add_argument(
+        "--reference-label",
+        default="reference",
+        help="name of the reference build in the table and CSV (e.g. main@abc1234)",
+    )
     ap.add_argument("--block-worker", default=None, help=argparse.SUPPRESS)
     ap.add_argument(
         "--out",
@@ -217,7 +270,13 @@ def main(argv: list[str] | None = None) -> int:
     if not args.interfaces:
         name = f"mca_throughput_laws{'_quick' if args.quick else ''}.csv"
         csv_path = Path(args.out) if args.out else Path(__file__).parent / "results" / name
-        return laws_main(args.quick, csv_path, 2.0 if args.quick else args.loop)
+        return laws_main(
+            args.quick,
+            csv_path,
+            2.0 if args.quick else args.loop,
+            args.reference_plugin,
+            args.reference_label,
+        )
 
     from tribolmp.lammps import mca
     from tribolmp.lammps.mca.prepare import prepare as mca_prepare
