@@ -66,3 +66,20 @@ def test_the_rejected_step_is_really_unstable(tmp_path, monkeypatch, lammps_avai
     good = preset_params("smoke", dt_factor=0.05, contact_viscosity=0.2, **base)
     res = run_mca(good, tmp_path / "good", seed=1)
     assert res.natoms > 0
+
+
+def test_a_scene_sets_the_viscosity_and_the_step(tmp_path):
+    """[nanoscale] contact_viscosity and dt_factor reach the run; too large a step is refused."""
+    from tribolmp.lammps.mca import params_from_scene
+    from tribolmp.scene import load_scene
+
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[nanoscale]\ncontact_viscosity = 0.2\n")
+    with pytest.raises(ParameterError, match="dt_factor"):
+        params_from_scene(load_scene(bad))
+    good = tmp_path / "good.toml"
+    good.write_text("[nanoscale]\ncontact_viscosity = 0.2\ndt_factor = 0.05\n")
+    p = params_from_scene(load_scene(good))
+    assert (p.contact_viscosity, p.dt_factor) == (0.2, 0.05)
+    spec = p.material()
+    assert spec.contact_viscosity == 0.2

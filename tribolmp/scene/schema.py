@@ -333,6 +333,14 @@ class Nanoscale(Section):
         doc="Viscosity of the dissipative force between touching, unlinked automata (mca law); "
         "the seed's fitting parameter for the layer depth.",
     )
+    dt_factor: float = param(
+        0.1,
+        lo=0.0,
+        lo_open=True,
+        hi=10.0,
+        doc="Timestep / sqrt(m/k); at most half the Verlet limit of the lattice with its "
+        "contact viscosity (a large viscosity needs a smaller one).",
+    )
     preset: str = param("smoke", choices=("smoke", "default", "paper"), doc="Size/time preset.")
     ranks: int = param(1, lo=1, hi=1024, doc="MPI ranks (mpiexec -n).")
 

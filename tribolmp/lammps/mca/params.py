@@ -83,7 +83,7 @@ class MCAParams:
     # F = eta A / d v_rel (mca law); calibration in docs/mca_study.md; a large viscosity needs a
     # smaller dt_factor (the explicit viscous damping limit, checked below)
     contact_viscosity: float = _scene_field(Nanoscale, "contact_viscosity")
-    dt_factor: float = param(0.1, lo=0.0, lo_open=True, hi=10.0, doc="Timestep / sqrt(m/k).")
+    dt_factor: float = _scene_field(Nanoscale, "dt_factor")
     ramp_time: float = param(0.1e-9, unit="s", lo=0.0, hi=1e-6, doc="Velocity ramp 0 -> V.")
     approach_velocity: float = param(
         5.0,
