@@ -63,11 +63,38 @@ def markdown(rows: list[dict]) -> str:
     return "\n".join(out)
 
 
+def grid(rows: list[dict]) -> str:
+    """Return the P x V table of 2D rows: mu +- err / layer depth (nm) / localized, per seed."""
+    rows = [r for r in rows if (r["dim"] or "2") == "2" and r["mu"]]
+    ps = sorted({float(r["pressure_Pa"]) for r in rows})
+    vs = sorted({float(r["sliding_velocity_m_s"]) for r in rows})
+    out = ["| P (MPa) | " + " | ".join(f"V = {v:g} m/s" for v in vs) + " |",
+           "|---|" + "---|" * len(vs)]
+    for p in ps:
+        cells = []
+        for v in vs:
+            here = [r for r in rows if float(r["pressure_Pa"]) == p
+                    and float(r["sliding_velocity_m_s"]) == v]
+            here.sort(key=lambda r: int(r["seed"]))
+            if not here:
+                cells.append("–")
+                continue
+            mu = ", ".join(f"{float(r['mu']):.3f} ± {float(r['mu_err']):.3f}" for r in here)
+            lay = ", ".join(_f(r["layer_depth_m"], 1e9, "{:.1f}") for r in here)
+            loc = ", ".join("yes" if r["localized"] == "True" else "**no**" for r in here)
+            seeds = f" ({len(here)} seeds)" if len(here) > 1 else ""
+            cells.append(f"{mu}{seeds} / {lay} / {loc}")
+        out.append(f"| {p / 1e6:g} | " + " | ".join(cells) + " |")
+    return "\n".join(out)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Print the table of one law's rows (all laws without ``--law``)."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--campaign", default="docs/data/mca_campaign.csv")
     ap.add_argument("--law", default=None, help="only this law's rows")
+    ap.add_argument("--grid", action="store_true",
+                    help="the P x V grid (mu / layer / localized) of the 2D rows instead")
     args = ap.parse_args(argv)
     try:
         with open(args.campaign, newline="") as fh:
@@ -75,7 +102,7 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:
         print(f"mca_campaign_table: --campaign: {exc}", file=sys.stderr)
         return 2
-    print(markdown(rows))
+    print(grid(rows) if args.grid else markdown(rows))
     return 0
 
 

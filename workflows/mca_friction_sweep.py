@@ -265,6 +265,9 @@ def campaign_figures(campaign: Path, out_dir: Path, prefix: str = "mca_study") -
                     mfc="none" if law != laws[-1] else None,
                 )
         ax.set_xscale("symlog", linthresh=1.0)
+        if name == "mu":
+            # at 0.5 MPa only a few automata touch and mu can reach several units
+            ax.set_yscale("log")
         ax.set_xlabel("P (MPa)")
         ax.set_ylabel(label)
         ax.set_title(f"{label} (one marker per run; seeds at 150 and 382 MPa)", fontsize=8)
