@@ -199,7 +199,8 @@ BOND_LAWS: Mapping[str, BondLaw] = MappingProxyType(
         "mca": BondLaw(
             name="mca",
             keyword="mca",
-            styles=_COMMON_STYLES,
+            # (its integrator, fix nve/mca, comes from the plugin as well)
+            styles=(("atom", "bpm/sphere"),),
             map_material=_mca_map,
             deck_variables=_mca_variables,
             validate=_mca_validate,

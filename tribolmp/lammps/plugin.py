@@ -46,7 +46,12 @@ __all__ = [
 #: Source folder shipped as package data.
 SOURCE_DIR = Path(__file__).resolve().parent / "plugin_src"
 #: (category, style) pairs the plugin provides.
-PLUGIN_STYLES = (("pair", "mca"), ("fix", "mca/state"), ("compute", "mca/atom"))
+PLUGIN_STYLES = (
+    ("pair", "mca"),
+    ("fix", "mca/state"),
+    ("fix", "nve/mca"),
+    ("compute", "mca/atom"),
+)
 _SO_NAME = "mcaplugin.so"
 # -ffp-contract=off: no fused multiply-adds, so a build for this CPU's instruction set
 # (-march=native) gives the same numbers as a generic one (measured: bit-identical restart files)

@@ -9,6 +9,7 @@
 
 #include "compute_mca_atom.h"
 #include "fix_mca_state.h"
+#include "fix_nve_mca.h"
 #include "lammps.h"
 #include "pair_mca.h"
 
@@ -48,6 +49,11 @@ static Fix *fix_mca_state_creator(LAMMPS *lmp, int argc, char **argv)
   return new FixMCAState(lmp, argc, argv);
 }
 
+static Fix *fix_nve_mca_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixNVEMCA(lmp, argc, argv);
+}
+
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
   auto reg = (lammpsplugin_regfunc) regfunc;
@@ -67,6 +73,12 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "mca/state";
   plugin.info = "per-automaton and per-link state of pair mca (tribolmp)";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_mca_state_creator;
+  (*reg)(&plugin, lmp);
+
+  plugin.style = "fix";
+  plugin.name = "nve/mca";
+  plugin.info = "velocity Verlet of spheres without orientation (nve/bpm/sphere's arithmetic; tribolmp)";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_nve_mca_creator;
   (*reg)(&plugin, lmp);
 
   plugin.style = "compute";
