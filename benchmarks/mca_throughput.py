@@ -37,6 +37,9 @@ The machine is shared: ``uptime``'s load average is recorded next to each row.
 ``--reference-plugin SO [--reference-label NAME]`` adds a third row per system: the mca law
 with another build of the plugin (e.g. the sources of an older commit compiled into another
 cache folder), timed in the same run, so that a before/after ratio shares the machine's load.
+``--reference-settings old`` runs that row with the block deck's settings before the plugin had
+its own integrator (``fix nve/bpm/sphere``, ghost cutoff 3 d, ``newton on``), which a plugin
+older than ``fix nve/mca`` needs; ``current`` (default) with today's.
 
 Usage: ``python benchmarks/mca_throughput.py [--quick] [--out CSV]`` (laws),
 ``python benchmarks/mca_throughput.py --interfaces [--quick]``.
@@ -168,12 +171,21 @@ def _block_run(variables: dict, out: Path, steps: int) -> dict:
     }
 
 
+def _diameter_nm(v: dict) -> float:
+    """Automaton diameter (nm) of a block's data file (the first atom's diameter column)."""
+    lines = Path(v["data"]).read_text().splitlines()
+    k = next(i for i, ln in enumerate(lines) if ln.startswith("Atoms"))
+    row = next(ln for ln in lines[k + 1 :] if ln.strip())
+    return float(row.split()[3])
+
+
 def laws_main(
     quick: bool,
     csv_path: Path,
     loop_s: float,
     reference: str | None = None,
     reference_label: str = "reference",
+    reference_settings: str = "current",
 ) -> int:
     """Mca vs bpm/spring/plastic on the same 2D and 3D blocks; print and write the CSV.
 
@@ -198,6 +210,14 @@ def laws_main(
                 v = {k: str(x) for k, x in block_setup(base, dim, out, n=n).items()}
                 if "@" in law:
                     v["plugin"] = str(Path(reference).resolve())
+                    if reference_settings == "old":
+                        # the block deck's mca settings before fix nve/mca (main at 3c1f250)
+                        d = _diameter_nm(v)
+                        v.update(
+                            integrator="nve/bpm/sphere",
+                            pair_newton="on",
+                            comm_cut=f"{3.0 * d:.10g}",
+                        )
                 v.update(drive="deform", vshear="5.0")
                 cal = _block_run(v, out / "cal", 200 if quick else 500)
                 steps = max(200, int(loop_s * cal["rate"] / cal["atoms"]))
@@ -214,6 +234,7 @@ def laws_main(
                     "plugin": (law.split("@", 1)[1] if "@" in law else "current")
                     if law.startswith("mca")
                     else "",
+                    "deck_settings": reference_settings if "@" in law else "current",
                     "automata": r["atoms"],
                     "steps": r["steps"],
                     "loop_s": r["loop_s"],
@@ -255,6 +276,13 @@ def main(argv: list[str] | None = None) -> int:
         default="reference",
         help="name of the reference build in the table and CSV (e.g. main@abc1234)",
     )
+    ap.add_argument(
+        "--reference-settings",
+        choices=("current", "old"),
+        default="current",
+        help="deck settings of the reference row: today's, or those before fix nve/mca "
+        "(nve/bpm/sphere, 3 d ghost cutoff, newton on), which an older plugin needs",
+    )
     ap.add_argument("--block-worker", default=None, help=argparse.SUPPRESS)
     ap.add_argument(
         "--out",
@@ -276,6 +304,7 @@ def main(argv: list[str] | None = None) -> int:
             2.0 if args.quick else args.loop,
             args.reference_plugin,
             args.reference_label,
+            args.reference_settings,
         )
 
     from tribolmp.lammps import mca

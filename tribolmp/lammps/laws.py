@@ -35,7 +35,7 @@ from typing import Any
 
 from ..errors import ParameterError
 
-__all__ = ["BOND_LAWS", "DEFAULT_LAW", "BondLaw", "get_law", "law_names"]
+__all__ = ["BOND_LAWS", "DEFAULT_LAW", "NEIGHBOR_SKIN", "BondLaw", "get_law", "law_names"]
 
 
 def _rot_nu_limit(spec) -> None:
@@ -127,6 +127,11 @@ class BondLaw:
         (the bpm laws' ``fix bond/create``; see ``bpm_relink.in`` for why).
     coordination_cap : bool
         Informational: True when the law's links are LAMMPS bonds (bond slots per atom).
+    ghost_cutoff : float
+        Communication (ghost) cutoff of the friction deck in automaton diameters (the deck
+        variable ``comm_cut``; LAMMPS raises it to the neighbour cutoff if that is longer).
+        The bpm laws keep 2.2 d (links stretched to rupture and the 1-2 partners of
+        ``fix bond/create``); the mca law needs only its neighbour range.
     doc : str
         One line for ``--help`` and the docs.
     """
@@ -141,6 +146,11 @@ class BondLaw:
     deferred_fragment: str | None = None
     coordination_cap: bool = True
     doc: str = field(default="")
+    ghost_cutoff: float = 2.2
+
+
+#: Verlet skin of the friction deck's neighbour lists, in automaton diameters (every law).
+NEIGHBOR_SKIN = 0.3
 
 
 _COMMON_STYLES = (("atom", "bpm/sphere"), ("fix", "nve/bpm/sphere"))
@@ -206,6 +216,11 @@ BOND_LAWS: Mapping[str, BondLaw] = MappingProxyType(
             validate=_mca_validate,
             setup=_mca_setup,
             coordination_cap=False,
+            # pair_style mca's cutoff (1.25 d, links break far below it: rupture strains are
+            # < 1 %) plus the skin (0.3 d) is 1.55 d; nothing else needs ghosts (its bonds are
+            # deleted after the first force evaluation), so the ghost shell is the neighbour
+            # cutoff, rounded up so that LAMMPS does not adjust it
+            ghost_cutoff=1.6,
             doc="movable cellular automata: many-body elasticity, von Mises plasticity, "
             "fracture and welding (tribolmp plugin pair_style mca)",
         ),

@@ -470,6 +470,9 @@ def block_setup(
     if law == "mca":
         from .plugin import plugin_path
 
+        # ghosts within the neighbour cutoff only: pair cutoff 1.25 d + the deck's 0.3 nm skin
+        # (the bpm links keep 3 d, the friction deck's 2.2 d plus a margin)
+        v["comm_cut"] = f"{1.3 * d + 0.3:.10g}"
         geom = _block(dim, d, n, bonds=False)
         mass = to_lammps(p.mass, "mass")
         data = write_bpm_data(

@@ -12,7 +12,7 @@ from typing import Any
 
 from ...units import from_lammps, to_lammps
 from ..decks import laws_dir
-from ..laws import get_law
+from ..laws import NEIGHBOR_SKIN, get_law
 from .params import MCAParams
 
 __all__ = ["deck_variables", "steps_of"]
@@ -78,9 +78,10 @@ def deck_variables(
         "sink_lo": f"{geom_info['sink_lo_nm']:.10g}",
         "sink_hi": f"{geom_info['sink_hi_nm']:.10g}",
         "sink_tau": f"{to_lammps(params.sink_tau, 'time'):.10g}",
-        # links may stretch to (1 + rupture strain) d; 2.2 d keeps them and
-        # their partners' neighbours visible
-        "comm_cut": f"{2.2 * d:.10g}",
+        # per law: the bpm links may stretch to (1 + rupture strain) d, and 2.2 d keeps them
+        # and their partners' neighbours visible; the mca law needs its neighbour range only
+        "comm_cut": f"{law.ghost_cutoff * d:.10g}",
+        "skin": f"{NEIGHBOR_SKIN * d:.10g}",
         # SI value of one LAMMPS unit, for the SI columns of friction.csv
         "si_force": f"{from_lammps(1.0, 'force'):.10g}",
         "si_length": f"{from_lammps(1.0, 'length'):.10g}",
