@@ -68,6 +68,8 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   pin = nullptr;
   gimg = nullptr;
   maxxo = 0;
+  pre = nullptr;
+  maxpre = 0;
 }
 
 PairMCA::~PairMCA()
@@ -80,6 +82,7 @@ PairMCA::~PairMCA()
   memory->destroy(xo);
   memory->destroy(pin);
   memory->destroy(gimg);
+  delete[] pre;
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -522,6 +525,16 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       for (int b = 0; b < npf; b += 8) __builtin_prefetch(nxt + b);
     }
 
+    // pass 1: the geometry of every pair of i that is evaluated (square root, reciprocal and
+    // the tangential rescaling's division for all pairs first, so that their latencies
+    // overlap instead of lying on each pair's chain of dependent operations; the same
+    // expressions on the same inputs as in pass 2's place, so the same numbers)
+    if (jnum > maxpre) {
+      maxpre = jnum + 8;
+      delete[] pre;
+      pre = new PairPre[maxpre];
+    }
+    int npre = 0;
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const double jtag = (double) tag[j];
@@ -587,6 +600,67 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         }
       }
       const double rsq = D3 ? R0 * R0 + R1 * R1 + R2 * R2 : R0 * R0 + R1 * R1;
+      const int k1 = cache_i[jj];
+      // a pair with no state that does not touch: nothing to do (initial links aside)
+      if (k1 < 0 && !init_links && rsq >= dbar * dbar) continue;
+      PairPre &P = pre[npre++];
+      P.jj = jj;
+      P.j = j;
+      P.R0 = R0;
+      P.R1 = R1;
+      P.R2 = R2;
+      P.Va0 = Va0;
+      P.Va1 = Va1;
+      P.Va2 = Va2;
+      P.Vb0 = Vb0;
+      P.Vb1 = Vb1;
+      P.Vb2 = Vb2;
+      P.rsq = rsq;
+      const double r = std::sqrt(rsq);
+      const double ir = 1.0 / r;
+      const double n0 = R0 * ir, n1 = R1 * ir, n2 = D3 ? R2 * ir : 0.0;
+      const double idbar = UNI ? idbar_u : 1.0 / dbar;
+      P.r = r;
+      P.n0 = n0;
+      P.n1 = n1;
+      P.n2 = n2;
+      P.idbar = idbar;
+      P.eraw = r * idbar - 1.0;
+      P.proj = 0;
+      if (ADV && k1 >= 0) {
+        // (a pair without a slot gets one in pass 2 with xi = 0: no projection.  Only this
+        // pair writes its slot, so pass 2 reads the same xi)
+        const double *xi = &slots_i[k1 * FS::NSLOT + FS::S_XI];
+        const double xi0 = xi[0], xi1 = xi[1], xi2 = D3 ? xi[2] : 0.0;
+        const double xn = D3 ? xi0 * n0 + xi1 * n1 + xi2 * n2 : xi0 * n0 + xi1 * n1;
+        const double m0 = D3 ? xi0 * xi0 + xi1 * xi1 + xi2 * xi2 : xi0 * xi0 + xi1 * xi1;
+        if (xn != 0.0 && m0 > 0.0) {
+          // projection removes xn^2 of |xi|^2; restore the magnitude, sqrt(m0/(m0 - xn^2)).
+          // The normal turns by ~1e-6 rad per step, so q = xn^2/m0 ~ 1e-12 and the series
+          // 1 + q/2 + 3q^2/8 is exact to round-off (error 5q^3/16); the square root only if not
+          const double q = xn * xn / m0;
+          P.sc = (q < 1e-4) ? 1.0 + q * (0.5 + 0.375 * q)
+                            : ((q < 1.0) ? std::sqrt(1.0 / (1.0 - q)) : 0.0);
+          P.xn = xn;
+          P.proj = 1;
+        }
+      }
+    }
+
+    // pass 2: the law, pair by pair
+    for (int ip = 0; ip < npre; ip++) {
+      const PairPre &P = pre[ip];
+      const int jj = P.jj;
+      const int j = P.j;
+      const double jtag = (double) tag[j];
+      const bool jlocal = j < nlocal;
+      const double dbar = UNI ? dbar_u : radius[i] + radius[j];
+      const bool i_is_a = itag < jtag;
+      const double sg = i_is_a ? 1.0 : -1.0;
+      const int a = i_is_a ? i : j, b = i_is_a ? j : i;
+      const double R0 = P.R0, R1 = P.R1, R2 = P.R2;
+      const double Va0 = P.Va0, Va1 = P.Va1, Va2 = P.Va2, Vb0 = P.Vb0, Vb1 = P.Vb1, Vb2 = P.Vb2;
+      const double rsq = P.rsq;
       int k = cache_i[jj];
       const bool same_body = !mol || mol[i] == mol[j];
       if (k < 0) {
@@ -615,11 +689,9 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         mirror_i[jj] = (kj >= 0) ? kj : new_slot(j, itag);
       }
       double *sj = jlocal ? slots[j] + mirror_i[jj] * FS::NSLOT : nullptr;
-      const double r = std::sqrt(rsq);
-      const double ir = 1.0 / r;
-      const double n0 = R0 * ir, n1 = R1 * ir, n2 = D3 ? R2 * ir : 0.0;
-      const double idbar = UNI ? idbar_u : 1.0 / dbar;
-      const double eraw = r * idbar - 1.0;
+      const double n0 = P.n0, n1 = P.n1, n2 = P.n2;
+      const double idbar = P.idbar;
+      const double eraw = P.eraw;
       int kind = static_cast<int>(s[FS::S_KIND]);
 
       if (kind == FS::CONTACT && eraw >= 0.0) {    // contact opened: forget it
@@ -655,17 +727,11 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       double pn = s[FS::S_PN];
 
       if (ADV) {
-        // tangential displacement: keep xi in the tangent plane (magnitude conserved),
-        // then add the tangential part of this step's contact-point displacement
-        const double xn = D3 ? xi0 * n0 + xi1 * n1 + xi2 * n2 : xi0 * n0 + xi1 * n1;
-        const double m0 = D3 ? xi0 * xi0 + xi1 * xi1 + xi2 * xi2 : xi0 * xi0 + xi1 * xi1;
-        if (xn != 0.0 && m0 > 0.0) {
-          // projection removes xn^2 of |xi|^2; restore the magnitude, sqrt(m0/(m0 - xn^2)).
-          // The normal turns by ~1e-6 rad per step, so q = xn^2/m0 ~ 1e-12 and the series
-          // 1 + q/2 + 3q^2/8 is exact to round-off (error 5q^3/16); the square root only if not
-          const double q = xn * xn / m0;
-          const double sc = (q < 1e-4) ? 1.0 + q * (0.5 + 0.375 * q)
-                                       : ((q < 1.0) ? std::sqrt(1.0 / (1.0 - q)) : 0.0);
+        // tangential displacement: keep xi in the tangent plane (magnitude conserved, the
+        // factor sc from pass 1), then add the tangential part of this step's contact-point
+        // displacement
+        if (P.proj) {
+          const double sc = P.sc, xn = P.xn;
           xi0 = sc * (xi0 - xn * n0);
           xi1 = sc * (xi1 - xn * n1);
           if (D3) xi2 = sc * (xi2 - xn * n2);

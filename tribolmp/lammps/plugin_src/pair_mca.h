@@ -68,6 +68,13 @@ class PairMCA : public Pair {
   double **pin;         // pair inputs of local and ghost atoms: X, pending plastic increment[6]
   int **gimg;           // periodic image (integers) of each ghost relative to its owner
   int maxxo;
+  // pass-1 geometry of the pairs of one automaton (pair_loop)
+  struct PairPre {
+    int jj, j, proj;
+    double R0, R1, R2, Va0, Va1, Va2, Vb0, Vb1, Vb2, rsq, r, n0, n1, n2, idbar, eraw, sc, xn;
+  };
+  PairPre *pre;
+  int maxpre;
 
   void allocate();
   void ensure_fix();
