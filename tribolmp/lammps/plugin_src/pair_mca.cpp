@@ -384,13 +384,22 @@ void PairMCA::compute(int eflag, int vflag)
   // step used, so it reproduces those forces exactly) and the pending plastic strain increment
   double **autom = fix->autom;
   const int ix = advance ? FS::A_X : FS::A_XU;
+  if (nlocal > maxsacc) {
+    maxsacc = atom->nmax;
+    memory->destroy(sacc);
+    memory->create(sacc, maxsacc, 8, "pair:mca:sacc");
+  }
+  // (one pass over the automata: the Love-Weber sums are cleared here as well)
   for (int i = 0; i < nlocal; i++) {
+    double *xoi = xo[i], *pini = pin[i], *si = sacc[i];
+    const double *xi = x[i], *vi = v[i], *am = autom[i];
     for (int c = 0; c < 3; c++) {
-      xo[i][c] = x[i][c];
-      xo[i][3 + c] = v[i][c];
+      xoi[c] = xi[c];
+      xoi[3 + c] = vi[c];
     }
-    pin[i][0] = autom[i][ix];
-    for (int c = 0; c < 6; c++) pin[i][1 + c] = autom[i][FS::A_DEP + c];
+    pini[0] = am[ix];
+    for (int c = 0; c < 6; c++) pini[1 + c] = am[FS::A_DEP + c];
+    for (int k = 0; k < 8; k++) si[k] = 0.0;
   }
   comm->forward_comm(this);
   if (neighbor->ago == 0 || cacheoff == nullptr) {
@@ -401,13 +410,6 @@ void PairMCA::compute(int eflag, int vflag)
   } else
     fix->clear_mirrors();    // this step's loop lists the same pairs again
 
-  if (nlocal > maxsacc) {
-    maxsacc = atom->nmax;
-    memory->destroy(sacc);
-    memory->create(sacc, maxsacc, 8, "pair:mca:sacc");
-  }
-  for (int i = 0; i < nlocal; i++)
-    for (int k = 0; k < 8; k++) sacc[i][k] = 0.0;
 
   // one radius for all automata (the common case): the pair constants are computed once
   const int nall = nlocal + atom->nghost;
@@ -434,30 +436,37 @@ void PairMCA::compute(int eflag, int vflag)
   }
   const double tally_links = tally[0], tally_cross = tally[1], tally_contacts = tally[2];
 
+  // per automaton, in one pass over its state row: stress and plastic update, the tallies,
+  // and the committed step's pair forces.  Those of a committed step are stored: a
+  // re-evaluation of the same step (the setup of a run continued from a restart, or of a second
+  // run command) returns them unchanged.  Recomputing them would use full-step velocities where
+  // the committed step used half-step ones (velocity Verlet), so damping and viscosity would
+  // differ by one step
   double cf = 0.0, cb = 0.0, lb = 0.0, wf = 0.0;
+  const bool restore = !advance && fix->last_commit >= 0.0;
+  double *radius = atom->radius;
+  // (with one radius the volume is the same expression of the same number for every automaton)
+  const double Vuni = (runi > 0.0) ? automaton_volume(2.0 * runi, dim) : 0.0;
   for (int i = 0; i < nlocal; i++) {
-    automaton_update(i, advance);
-    cf += autom[i][FS::A_CF];
-    cb += autom[i][FS::A_CB];
-    lb += autom[i][FS::A_LB];
-    wf += autom[i][FS::A_WF];
-  }
-  if (advance) {
-    // the pair forces of this committed step: a re-evaluation of the same step (the setup of a
-    // run continued from a restart, or of a second run command) returns them unchanged.
-    // Recomputing them would use full-step velocities where the committed step used
-    // half-step ones (velocity Verlet), so damping and viscosity would differ by one step
-    for (int i = 0; i < nlocal; i++)
+    const double V = (runi > 0.0) ? Vuni : automaton_volume(2.0 * radius[i], dim);
+    automaton_update(i, advance, V);
+    double *am = autom[i];
+    cf += am[FS::A_CF];
+    cb += am[FS::A_CB];
+    lb += am[FS::A_LB];
+    wf += am[FS::A_WF];
+    double *fi = f[i], *ti = torque[i];
+    if (advance) {
       for (int c = 0; c < 3; c++) {
-        autom[i][FS::A_F + c] = f[i][c];
-        autom[i][FS::A_T + c] = torque[i][c];
+        am[FS::A_F + c] = fi[c];
+        am[FS::A_T + c] = ti[c];
       }
-  } else if (fix->last_commit >= 0.0) {
-    for (int i = 0; i < nlocal; i++)
+    } else if (restore) {
       for (int c = 0; c < 3; c++) {
-        f[i][c] = autom[i][FS::A_F + c];
-        torque[i][c] = autom[i][FS::A_T + c];
+        fi[c] = am[FS::A_F + c];
+        ti[c] = am[FS::A_T + c];
       }
+    }
   }
   if (init_links) fix->initialized = 1;
   if (advance) fix->last_commit = (double) update->ntimestep;
@@ -975,11 +984,10 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
    Hooke's law with plastic strain).
 ------------------------------------------------------------------------- */
 
-void PairMCA::automaton_update(int i, bool advance)
+void PairMCA::automaton_update(int i, bool advance, double V)
 {
   double *am = fix->autom[i];
   const int dim = mat.dim;
-  const double V = automaton_volume(2.0 * atom->radius[i], dim);
   double sig[6];
   double X;
   if (dim == 2) {

@@ -85,7 +85,7 @@ class PairMCA : public Pair {
   int find_slot(int i, double jtag);
   int new_slot(int i, double jtag);
   int initial_link_kind(int i, tagint jtag, double rsq, double dbar, bool same_body);
-  void automaton_update(int i, bool advance);
+  void automaton_update(int i, bool advance, double V);
   template <int DIM, bool ADV, bool UNI> void pair_loop(bool init_links, double *tally, double runi);
 };
 
