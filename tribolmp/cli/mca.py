@@ -1,7 +1,8 @@
 """``tribolmp mca``: movable cellular automata friction on LAMMPS.
 
 ``tribolmp mca run [SCENE.toml] [--dim 2|3] [--velocity V] [--pressure P]
-[--time T] [--preset smoke|default|paper] [--np N] [--out DIR] [--resume] [--json]``
+[--time T] [--preset smoke|default|paper] [--np N] [--out DIR] [--resume | --overwrite]
+[--json]``
 
 ``tribolmp mca material-test --law LAW --test uniaxial|shear [--dim 2|3] [--pressure P]
 [--mode tension|compression] [--nu NU] [--json]``
@@ -63,6 +64,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
     r.add_argument("--out", default="mca_run", help="output directory (default ./mca_run)")
     r.add_argument(
         "--resume", action="store_true", help="continue from the newest restart file in --out"
+    )
+    r.add_argument(
+        "--overwrite",
+        action="store_true",
+        help="discard an earlier run in --out (without it, a folder holding a run is refused)",
     )
     r.add_argument("--json", action="store_true", help="print the result as JSON")
     r.add_argument(
@@ -170,7 +176,13 @@ def _run(args: argparse.Namespace) -> int:
     out = prepare_dir(args.out, "--out")
     with DirLock(out, what="output folder"):
         res = run_mca(
-            params, out, seed=seed, resume=args.resume, np=args.np, overrides=_overrides(args.set)
+            params,
+            out,
+            seed=seed,
+            resume=args.resume,
+            np=args.np,
+            overrides=_overrides(args.set),
+            on_conflict="overwrite" if args.overwrite else "refuse",
         )
     payload = {"rates_json": res.get("rates_path"), "out_dir": res["out_dir"]}
     payload.update({k: res.get(k) for k in JSON_FIELDS})

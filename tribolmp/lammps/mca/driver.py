@@ -20,10 +20,10 @@ from .prepare import prepare
 from .rates import compute_rates
 from .restart import (
     atomic_write_json,
+    check_folder,
     discard_run_files,
     finalize_outputs,
     restart_files,
-    resumable_meta,
 )
 from .runner import run_lammps
 
@@ -51,6 +51,7 @@ def run_mca(
     resume: bool = False,
     np: int = 1,
     overrides: dict[str, Any] | None = None,
+    on_conflict: str = "refuse",
 ) -> Result:
     """Run the MCA friction experiment and write the output-directory contract.
 
@@ -66,15 +67,21 @@ def run_mca(
         Continue from the newest readable ``restart.<step>.bin`` in
         ``out_dir`` if the folder holds this very run (same parameters, seed
         and overrides in ``meta.json``); outputs after that step are dropped
-        and re-run.  A folder that cannot be resumed is discarded and the run
-        starts from the beginning.  Idempotent: resuming a finished run only
-        finishes it again.
+        and re-run.  Idempotent: resuming a finished run only finishes it
+        again.  A folder without work (no restart file, no finished
+        ``rates.json``) simply starts over.
     np : int
         MPI ranks; ``np > 1`` runs ``mpiexec -n np python -m tribolmp.lammps.mca``.
     overrides : dict, optional
         Expert use (experiments, failure tests): deck variables (LAMMPS nano
         units) that replace the mapped values after validation.  Recorded in
         ``meta.json``.
+    on_conflict : {"refuse", "overwrite", "archive"}
+        When ``out_dir`` holds work this call would destroy (a run with other
+        parameters, seed or overrides, or any earlier run when ``resume`` is
+        false): raise :class:`~tribolmp.errors.SetupError` naming the fields
+        that differ (default), discard it, or move it into
+        ``out_dir/superseded/<n>/`` (the chain's stage folders).
 
     Returns
     -------
@@ -84,7 +91,8 @@ def run_mca(
         over the second half when the rates were not computed),
         ``atom_steps_per_s``, ``time_s`` (simulated), ``wall_time_s``,
         ``natoms``, ``nprocs``, ``rates_path``, ``resumed_from_step``,
-        ``discarded_restarts``.
+        ``discarded_restarts``, ``superseded_run`` (where another run's work
+        was moved, or None).
     """
     if not isinstance(params, MCAParams):
         raise ParameterError("params", "an MCAParams instance", type(params).__name__)
@@ -93,7 +101,9 @@ def run_mca(
     overrides = dict(overrides or {})
     out = Path(out_dir).resolve()
     t0 = time.perf_counter()
-    meta = resumable_meta(out, _expected(params, seed, overrides)) if resume else None
+    meta, superseded = check_folder(
+        out, _expected(params, seed, overrides), resume=resume, on_conflict=on_conflict
+    )
     discarded: list[str] = []
     while True:
         restarts = restart_files(out) if meta is not None else []
@@ -118,7 +128,9 @@ def run_mca(
             discarded.append(restart[1].name)
             restart[1].unlink(missing_ok=True)
     finalize_outputs(out, int(variables["dump_every"]))
-    return _finish(out, counters, t0, discarded)
+    res = _finish(out, counters, t0, discarded)
+    res["superseded_run"] = str(superseded) if superseded else None
+    return res
 
 
 def _finish(out: Path, counters: dict[str, Any], t0: float, discarded: list[str]) -> Result:

@@ -18,8 +18,14 @@ interrupts:
   complete frames up to that step.  :func:`finalize_outputs` removes the rows
   and frames a ``run`` command writes twice (its first step) or off the dump
   interval (the first frame of a re-opened dump).
-* A folder that cannot be resumed (no or foreign ``meta.json``, no data file,
-  no readable restart) is discarded and recomputed (:func:`discard_run_files`).
+* A folder that holds no simulated work (no restart file and no finished
+  ``rates.json``: a run that failed before its first restart) is discarded and
+  recomputed (:func:`discard_run_files`).  A folder that holds work of another
+  run (a different ``meta.json``) or that is not being resumed is never
+  discarded silently: :func:`check_folder` refuses it with one line naming the
+  fields that differ, unless the caller asks to overwrite it or to move it
+  aside (:func:`archive_run_files`), so that hours of simulation are never
+  lost to a changed parameter or a forgotten ``--resume``.
 
 :func:`run_mca_resuming` is the entry point of the chain's nanoscale stage: it
 resumes whatever an earlier, interrupted run left in the stage's folder.
@@ -36,13 +42,14 @@ from typing import Any
 
 __all__ = [
     "RUN_FILES",
+    "archive_run_files",
     "atomic_write_json",
+    "check_folder",
     "atomic_write_text",
     "discard_run_files",
     "finalize_outputs",
     "prune_restarts",
     "restart_files",
-    "resumable_meta",
     "run_mca_resuming",
     "truncate_outputs",
     "write_restart",
@@ -119,22 +126,135 @@ def prune_restarts(out: Path, keep: int = 2) -> None:
         p.unlink(missing_ok=True)
 
 
-def resumable_meta(out: Path, expected: dict[str, Any]) -> dict[str, Any] | None:
-    """``meta.json`` of ``out`` if it describes the same run as ``expected``, else None.
+def _flat(d: Any, prefix: str = "") -> dict[str, Any]:
+    """Nested dicts as {dotted key: value} (lists and scalars are leaves)."""
+    if not isinstance(d, dict):
+        return {prefix: d}
+    out: dict[str, Any] = {}
+    for k, v in d.items():
+        out.update(_flat(v, f"{prefix}.{k}" if prefix else str(k)))
+    return out
 
-    ``expected`` holds ``params`` (dict), ``seed`` and ``overrides`` (dict of
-    strings); a folder of another run, or a broken ``meta.json``, is not resumable.
+
+def run_differences(meta: dict[str, Any], expected: dict[str, Any]) -> list[str]:
+    """Where the run described by ``meta`` differs from ``expected``, as ``key: folder != asked``.
+
+    Only the keys of ``expected`` are compared (``params``, ``seed``,
+    ``overrides``); a key the folder's ``meta.json`` lacks (a run written by
+    an older version) is reported as ``missing``.
     """
+    have = _flat({k: meta.get(k, "<missing>") for k in expected})
+    want = _flat(expected)
+    diffs = []
+    for key in sorted(set(have) | set(want)):
+        a, b = have.get(key, "<missing>"), want.get(key, "<missing>")
+        if a != b:
+            diffs.append(f"{key}: folder {a!r} != asked {b!r}")
+    return diffs
+
+
+def held_work(out: Path) -> str | None:
+    """Describe the simulated work ``out`` holds, or None if it holds none worth keeping.
+
+    Work is a restart file (a run that can be continued) or a finished run's
+    ``rates.json``.  A run that failed before its first restart holds nothing
+    that a rerun would not recompute within one restart interval.
+    """
+    out = Path(out)
+    restarts = restart_files(out) if out.is_dir() else []
+    if restarts:
+        return f"{len(restarts)} restart file(s), the newest at step {restarts[-1][0]}"
+    if (out / "rates.json").is_file():
+        return "a finished run (rates.json)"
+    return None
+
+
+def check_folder(
+    out: Path, expected: dict[str, Any], *, resume: bool, on_conflict: str
+) -> tuple[dict[str, Any] | None, Path | None]:
+    """Decide what to do with an output folder before a run; refuse rather than lose work.
+
+    Parameters
+    ----------
+    out : Path
+        The run's output folder.
+    expected : dict
+        What ``meta.json`` must hold for the folder to be this run (``params``,
+        ``seed``, ``overrides``).
+    resume : bool
+        The caller asks to continue the run the folder holds.
+    on_conflict : {"refuse", "overwrite", "archive"}
+        What to do when the folder holds work that this call would destroy
+        (work of another run, or any work when not resuming): raise, discard
+        it, or move it into ``out/superseded/<n>/``.
+
+    Returns
+    -------
+    meta : dict or None
+        The folder's ``meta.json`` when it is this run and ``resume`` is set
+        (continue from its restart files), else None (start from the beginning;
+        the folder's run files have been discarded or archived by then).
+    archived : Path or None
+        Where the work of another run was moved (``on_conflict="archive"``).
+
+    Raises
+    ------
+    SetupError
+        One line: the folder, what it holds, the fields that differ and what
+        to do, when ``on_conflict`` is ``"refuse"`` and work would be lost.
+    """
+    from ...errors import SetupError
+
+    if on_conflict not in ("refuse", "overwrite", "archive"):
+        raise ValueError(f"on_conflict: expected refuse|overwrite|archive, got {on_conflict!r}")
+    out = Path(out)
+    if not out.is_dir():
+        return None, None
     try:
-        meta = json.loads((Path(out) / "meta.json").read_text())
+        folder_meta = json.loads((out / "meta.json").read_text())
     except (OSError, ValueError):
-        return None
-    if not isinstance(meta, dict) or not (Path(out) / "system.data").is_file():
-        return None
-    for key, value in expected.items():
-        if meta.get(key) != value:
-            return None
-    return meta
+        folder_meta = None
+    if not isinstance(folder_meta, dict):
+        folder_meta = None
+    same = folder_meta is not None and not run_differences(folder_meta, expected)
+    if resume and same and (out / "system.data").is_file():
+        return folder_meta, None
+    work = held_work(out)
+    if work is None or on_conflict == "overwrite":
+        discard_run_files(out)
+        return None, None
+    if on_conflict == "archive":
+        return None, archive_run_files(out)
+    if not resume:
+        what = "resume it (--resume / resume=True), choose an empty folder, or overwrite it"
+        raise SetupError(f"out_dir: {out} holds an earlier run ({work}); {what} (--overwrite)")
+    if folder_meta is None:
+        why = "no readable meta.json"
+    else:
+        diffs = run_differences(folder_meta, expected)
+        why = "; ".join(diffs[:3]) + (f"; and {len(diffs) - 3} more" if len(diffs) > 3 else "")
+        why = why or "no system.data"
+    raise SetupError(
+        f"out_dir: {out} holds a different run ({work}): {why}; resume needs the same "
+        "parameters, seed and overrides: pass those, choose another folder, or overwrite it "
+        "(--overwrite)"
+    )
+
+
+def archive_run_files(out: Path) -> Path:
+    """Move the run files of ``out`` into ``out/superseded/<n>/`` (never deletes; returns it)."""
+    out = Path(out)
+    base = out / "superseded"
+    n = 1
+    while (base / str(n)).exists():
+        n += 1
+    dest = base / str(n)
+    dest.mkdir(parents=True)
+    names = [out / name for name in RUN_FILES] + [p for _s, p in restart_files(out)]
+    for p in names:
+        if p.exists():
+            os.replace(p, dest / p.name)
+    return dest
 
 
 def discard_run_files(out: Path) -> None:
@@ -254,8 +374,10 @@ def run_mca_resuming(
 
     A folder that already holds files is resumed (``run_mca(..., resume=True)``):
     ``run_mca`` continues from the newest readable restart file of the same
-    run, drops restart files LAMMPS cannot read, and discards a folder of
-    another run.  An empty or missing folder starts a fresh run.
+    run and drops restart files LAMMPS cannot read.  The work of another run
+    (a stage folder written by another package version, say) is moved into
+    ``out/superseded/<n>/``, never deleted.  An empty or missing folder starts
+    a fresh run.
 
     Parameters
     ----------
@@ -281,5 +403,8 @@ def run_mca_resuming(
 
     out = Path(out)
     resume = out.is_dir() and any(out.iterdir())
-    res = run_mca(params, out, seed=seed, resume=resume, np=ranks)
-    return res, {"resumed": resume, "discarded_restarts": list(res.get("discarded_restarts", []))}
+    res = run_mca(params, out, seed=seed, resume=resume, np=ranks, on_conflict="archive")
+    info = {"resumed": resume, "discarded_restarts": list(res.get("discarded_restarts", []))}
+    if res.get("superseded_run"):
+        info["superseded_run"] = res["superseded_run"]
+    return res, info
