@@ -8,7 +8,9 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "force.h"
 #include "memory.h"
+#include "pair_mca.h"
 #include "utils.h"
 
 #include <cstring>
@@ -88,19 +90,12 @@ void FixMCAState::restart(char *buf)
                maxpartner, mp, mp);
 }
 
-/* pending mirror copies (see fix_mca_state.h): j's copy is i's with the partner tag of j */
+/* pending mirror copies (see fix_mca_state.h) */
 
 void FixMCAState::sync_mirrors()
 {
-  const int n = static_cast<int>(mirrors.size());
-  tagint *tag = atom->tag;
-  for (int q = 0; q < n; q += 4) {
-    const int i = mirrors[q], j = mirrors[q + 2];
-    double *sj = slot(j, mirrors[q + 3]);
-    memcpy(sj, slot(i, mirrors[q + 1]), sizeof(double) * NSLOT);
-    sj[S_TAG] = (double) tag[i];
-  }
-  mirrors.clear();
+  auto *pair = dynamic_cast<PairMCA *>(force->pair_match("mca", 1, 0));
+  if (pair) pair->sync_mirrors();
 }
 
 /* per-atom arrays */

@@ -26,8 +26,6 @@ FixStyle(mca/state,FixMCAState);
 
 #include "fix.h"
 
-#include <vector>
-
 namespace LAMMPS_NS {
 
 class FixMCAState : public Fix {
@@ -82,21 +80,13 @@ class FixMCAState : public Fix {
   // the automaton with the smaller ID; the partner's copy is brought up to date only when it
   // can be read: before atoms move in the arrays (exchange, sort, deletion), before a restart
   // is written, and before pair mca re-maps its slots after a neighbour-list rebuild.  Between
-  // these points nothing reads it (the pair is not evaluated from the partner's side).
-  void add_mirror(int i, int k, int j, int kj)
-  {
-    mirrors.push_back(i);
-    mirrors.push_back(k);
-    mirrors.push_back(j);
-    mirrors.push_back(kj);
-  }
+  // these points nothing reads it (the pair is not evaluated from the partner's side).  Pair
+  // mca knows the pending pairs (its evaluation lists); this asks it to write them.
   void sync_mirrors();
-  void clear_mirrors() { mirrors.clear(); }
   int per_atom() const { return maxpartner * NSLOT + NAUTO; }
 
  private:
   int nmax_local;
-  std::vector<int> mirrors;    // (i, slot of i, j, slot of j) of the pending copies
 };
 
 }    // namespace LAMMPS_NS

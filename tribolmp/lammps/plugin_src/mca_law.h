@@ -46,6 +46,8 @@ struct Material {
   double alpha = 0.0;    // mean-stress weight
   double lambda = 0.0;   // Lame's first parameter
   double Kc = 0.0;       // normal stiffness of an unlinked contact (stress per strain)
+  double inv_3GH = 0.0;  // 1 / (3G + H) and 1 / (3G) (the radial return's denominators)
+  double inv_3G = 0.0;
 
   // Rule 0 (elastic constants).  With pair traction t = 2G eps.n + alpha X n, the
   // Love-Weber stress of a Bravais lattice is sigma = 2G eps + alpha X I (because
@@ -59,6 +61,8 @@ struct Material {
     lambda = 2.0 * G * nu / (1.0 - 2.0 * nu);
     alpha = (dim == 3) ? 3.0 * nu / (1.0 + nu) : 2.0 * nu;
     Kc = 2.0 * G / (1.0 - alpha);
+    inv_3GH = 1.0 / (3.0 * G + H);
+    inv_3G = 1.0 / (3.0 * G);
   }
 };
 
@@ -182,30 +186,32 @@ inline double von_mises(const double s[6])
 // and eps_p += dgamma.  Returns dgamma; deps (tensor, shear entries are tensor
 // components) and the returned stress are written back.  The mean stress is
 // untouched: yield does not depend on pressure.
-// elastic_seq (optional) receives the von Mises stress when the stress is not returned
-// (the returned stress is unchanged), else -1.
+// seq receives the von Mises stress of the stress written back (the deviator is scaled by
+// f = 1 - 3G dgamma / sigma_eq >= 0, so it is f sigma_eq: sigma_y(eps_p + dgamma), or sigma_0).
 inline double radial_return(const Material &m, double sig[6], double ep, double deps[6],
-                            double *elastic_seq = nullptr)
+                            double &seq)
 {
-  for (int k = 0; k < 6; k++) deps[k] = 0.0;
-  const double seq = von_mises(sig);
+  const double s_eq = von_mises(sig);
   const double sy = yield_stress(m, ep);
-  if (elastic_seq) *elastic_seq = -1.0;
-  if (seq <= sy || seq <= 0.0) {
-    if (elastic_seq) *elastic_seq = seq;
+  if (s_eq <= sy || s_eq <= 0.0) {
+    for (int k = 0; k < 6; k++) deps[k] = 0.0;
+    seq = s_eq;
     return 0.0;
   }
-  double dg = (seq - sy) / (3.0 * m.G + m.H);
-  if (yield_stress(m, ep + dg) >= m.s0) dg = (seq - m.s0) / (3.0 * m.G);
+  // (one division: the constant denominators are the material's reciprocals)
+  double dg = (s_eq - sy) * m.inv_3GH;
+  if (yield_stress(m, ep + dg) >= m.s0) dg = (s_eq - m.s0) * m.inv_3G;
   if (dg < 0.0) dg = 0.0;
+  const double is = 1.0 / s_eq;
   const double p = (sig[0] + sig[1] + sig[2]) / 3.0;
-  const double f = 1.0 - 3.0 * m.G * dg / seq;
-  const double c = 1.5 * dg / seq;
+  const double f = 1.0 - 3.0 * m.G * dg * is;
+  const double c = 1.5 * dg * is;
   double s[6] = {sig[0] - p, sig[1] - p, sig[2] - p, sig[3], sig[4], sig[5]};
   for (int k = 0; k < 6; k++) {
     deps[k] = c * s[k];
     sig[k] = f * s[k] + ((k < 3) ? p : 0.0);
   }
+  seq = f * s_eq;
   return dg;
 }
 

@@ -61,6 +61,11 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   cacheflat = nullptr;
   mirrorflat = nullptr;
   cacheoff = nullptr;
+  ecount = nullptr;
+  ej = nullptr;
+  eflag = nullptr;
+  ncached = 0;
+  mirrors_pending = 0;
   maxflat = 0;
   sacc = nullptr;
   maxsacc = 0;
@@ -78,6 +83,9 @@ PairMCA::~PairMCA()
   memory->destroy(cacheflat);
   memory->destroy(mirrorflat);
   memory->destroy(cacheoff);
+  memory->destroy(ecount);
+  memory->destroy(ej);
+  memory->destroy(eflag);
   memory->destroy(sacc);
   memory->destroy(xo);
   memory->destroy(pin);
@@ -253,43 +261,67 @@ void PairMCA::rebuild_cache()
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
   const int nlocal = atom->nlocal;
   tagint *tag = atom->tag;
+  tagint *mol = atom->molecule_flag ? atom->molecule : nullptr;
   if (atom->nmax > maxcache_atoms) {
     maxcache_atoms = atom->nmax;
     memory->destroy(cacheoff);
+    memory->destroy(ecount);
     memory->create(cacheoff, maxcache_atoms, "pair:mca:cacheoff");
+    memory->create(ecount, maxcache_atoms, "pair:mca:ecount");
   }
   bigint total = 0;
   for (int ii = 0; ii < inum; ii++) total += numneigh[ilist[ii]];
   if (total > maxflat) {
     maxflat = total + total / 4 + 16;
+    memory->destroy(ej);
+    memory->destroy(eflag);
     memory->destroy(cacheflat);
     memory->destroy(mirrorflat);
+    memory->create(ej, maxflat, "pair:mca:ej");
+    memory->create(eflag, maxflat, "pair:mca:eflag");
     memory->create(cacheflat, maxflat, "pair:mca:cacheflat");
     memory->create(mirrorflat, maxflat, "pair:mca:mirrorflat");
   }
   const int mp = fix->maxpartner;
   int *seen = new int[mp];
   bigint off = 0;
-  for (int i = 0; i < nlocal; i++) cacheoff[i] = -1;
+  for (int i = 0; i < nlocal; i++) {
+    cacheoff[i] = -1;
+    ecount[i] = 0;
+  }
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
+    const double itag = (double) tag[i];
     cacheoff[i] = off;
     for (int k = 0; k < mp; k++) seen[k] = 0;
     int *jlist = firstneigh[i];
+    int ne = 0;
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      const int k = find_slot(i, (double) tag[j]);
+      const double jtag = (double) tag[j];
+      const int k = find_slot(i, jtag);
       if (k >= 0) {
         if (seen[k])
           error->one(FLERR, "pair mca: automata {} and {} see each other twice; the periodic box "
                      "must be longer than twice the pair cutoff", tag[i], tag[j]);
         seen[k] = 1;
       }
-      cacheflat[off + jj] = k;
-      // local partner with the larger ID: this pair is evaluated here for both; its slot in j
-      mirrorflat[off + jj] = (j < nlocal && tag[i] < tag[j]) ? find_slot(j, (double) tag[i]) : -1;
+      // the pairs this automaton evaluates, in the neighbour list's order: every ghost partner
+      // (but its own image), and a local partner with the larger ID (evaluated here for both)
+      if (jtag == itag) continue;
+      const bool jlocal = j < nlocal;
+      if (jlocal && jtag < itag) continue;
+      const int *jimg = gimg[j];
+      const int e = off + ne++;
+      ej[e] = j;
+      eflag[e] = (itag < jtag ? E_IA : 0) | (jlocal ? E_LOCAL : 0) |
+          ((jimg[0] | jimg[1] | jimg[2]) != 0 ? E_IMAGE : 0) | ((!mol || mol[i] == mol[j]) ? E_SAME : 0);
+      cacheflat[e] = k;
+      // local partner: its slot for this automaton
+      mirrorflat[e] = jlocal ? find_slot(j, itag) : -1;
     }
-    off += numneigh[i];
+    ecount[i] = ne;
+    off += ne;
     for (int k = 0; k < mp; k++) {
       double *s = fix->slot(i, k);
       if (s[FS::S_TAG] == 0.0 || seen[k]) continue;
@@ -300,6 +332,30 @@ void PairMCA::rebuild_cache()
     }
   }
   delete[] seen;
+  ncached = nlocal;
+  mirrors_pending = 0;
+}
+
+/* pending mirror copies (fix_mca_state.h): a pair of two local automata is evaluated on the
+   copy of the one with the smaller ID; j's copy is i's with the partner tag of j.  The pairs
+   with a pending copy are those of the evaluation lists that hold a state on both sides. */
+
+void PairMCA::sync_mirrors()
+{
+  if (!mirrors_pending || cacheoff == nullptr) return;
+  mirrors_pending = 0;
+  tagint *tag = atom->tag;
+  // (the atoms of the last rebuild: an atom added since has no list)
+  for (int i = 0; i < ncached; i++) {
+    const bigint off = cacheoff[i];
+    if (off < 0) continue;
+    for (int e = off; e < off + ecount[i]; e++) {
+      if (!(eflag[e] & E_LOCAL) || cacheflat[e] < 0 || mirrorflat[e] < 0) continue;
+      double *sj = fix->slot(ej[e], mirrorflat[e]);
+      memcpy(sj, fix->slot(i, cacheflat[e]), sizeof(double) * FS::NSLOT);
+      sj[FS::S_TAG] = (double) tag[i];
+    }
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -404,11 +460,10 @@ void PairMCA::compute(int eflag, int vflag)
   comm->forward_comm(this);
   if (neighbor->ago == 0 || cacheoff == nullptr) {
     // the mirror copies of the pair states must be current before the slots are re-mapped
-    fix->sync_mirrors();
+    sync_mirrors();
     image_shifts();
     rebuild_cache();
-  } else
-    fix->clear_mirrors();    // this step's loop lists the same pairs again
+  }
 
 
   // one radius for all automata (the common case): the pair constants are computed once
@@ -445,11 +500,12 @@ void PairMCA::compute(int eflag, int vflag)
   double cf = 0.0, cb = 0.0, lb = 0.0, wf = 0.0;
   const bool restore = !advance && fix->last_commit >= 0.0;
   double *radius = atom->radius;
-  // (with one radius the volume is the same expression of the same number for every automaton)
-  const double Vuni = (runi > 0.0) ? automaton_volume(2.0 * runi, dim) : 0.0;
+  // (the stress is the Love-Weber sum times 1/V)
+  const double iVuni = (runi > 0.0) ? 1.0 / automaton_volume(2.0 * runi, dim) : 0.0;
   for (int i = 0; i < nlocal; i++) {
-    const double V = (runi > 0.0) ? Vuni : automaton_volume(2.0 * radius[i], dim);
-    automaton_update(i, advance, V);
+    const double iV = (runi > 0.0) ? iVuni : 1.0 / automaton_volume(2.0 * radius[i], dim);
+    if (dim == 2) automaton_update<2>(i, advance, iV);
+    else automaton_update<3>(i, advance, iV);
     double *am = autom[i];
     cf += am[FS::A_CF];
     cb += am[FS::A_CB];
@@ -494,15 +550,22 @@ void PairMCA::compute(int eflag, int vflag)
 template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, double *tally, double runi)
 {
   constexpr bool D3 = (DIM == 3);
-  double **x = atom->x, **v = atom->v, **f = atom->f;
-  double **omega = atom->omega, **torque = atom->torque;
+  const int inum = list->inum;
+  if (inum == 0) return;
+  // per-atom arrays through their contiguous storage (one load less per access than the
+  // row pointers)
+  const double *x = atom->x[0], *v = atom->v[0];
+  double *f = atom->f[0], *torque = atom->torque[0];
+  const double *omega = atom->omega[0];
   double *radius = atom->radius, *rmass = atom->rmass;
   tagint *tag = atom->tag;
-  tagint *mol = atom->molecule_flag ? atom->molecule : nullptr;
-  const int nlocal = atom->nlocal;
   const double dt = update->dt;
   double **autom = fix->autom;
-  double **slots = fix->slots;
+  double *slots = fix->slots[0];
+  const int slotrow = fix->maxpartner * FS::NSLOT;
+  const double *xo0 = xo[0], *pin0 = pin[0];
+  double *sacc0 = sacc[0];
+  const int *gimg0 = gimg[0];
   const double *h = domain->h;
   const double *hr = domain->h_rate;
   const bool vremap = domain->deform_vremap;
@@ -515,21 +578,23 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   const double cv_u = viscous_factor(mat, A_u, dbar_u);
   double tally_links = 0.0, tally_cross = 0.0, tally_contacts = 0.0;
 
-  const int inum = list->inum;
-  int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
+  int *ilist = list->ilist;
+  bool any_mirror = false;
 
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const double itag = (double) tag[i];
-    int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
-    int *cache_i = &cacheflat[cacheoff[i]];
-    int *mirror_i = &mirrorflat[cacheoff[i]];
-    double *slots_i = slots[i];
+    // the pairs i evaluates (rebuild_cache): partner, orientation, image and body flags
+    const bigint eoff = cacheoff[i];
+    const int jnum = ecount[i];
+    const int *ej_i = &ej[eoff], *ef_i = &eflag[eoff];
+    int *cache_i = &cacheflat[eoff];
+    int *mirror_i = &mirrorflat[eoff];
+    double *slots_i = slots + (bigint) i * slotrow;
     if (ii + 1 < inum) {
       // the slots of the next automaton (the loop over automata is the memory stream that
       // the hardware prefetcher does not see: rows are maxpartner slots apart)
-      const double *nxt = slots[ilist[ii + 1]];
+      const double *nxt = slots + (bigint) ilist[ii + 1] * slotrow;
       const int npf = ((D3 ? 12 : 6) < fix->maxpartner ? (D3 ? 12 : 6) : fix->maxpartner) * FS::NSLOT;
       for (int b = 0; b < npf; b += 8) __builtin_prefetch(nxt + b);
     }
@@ -545,37 +610,33 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
     }
     int npre = 0;
     for (int jj = 0; jj < jnum; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const double jtag = (double) tag[j];
-      if (jtag == itag) continue;
-      // two local automata: evaluated once, in the loop of the one with the smaller ID
-      const bool jlocal = j < nlocal;
-      if (jlocal && jtag < itag) continue;
+      const int j = ej_i[jj];
+      const int ef = ef_i[jj];
       const double dbar = UNI ? dbar_u : radius[i] + radius[j];
-      const bool i_is_a = itag < jtag;
-      const double sg = i_is_a ? 1.0 : -1.0;
+      const bool i_is_a = ef & E_IA;
       const int a = i_is_a ? i : j, b = i_is_a ? j : i;
       // canonical relative position a -> b and velocities, bit-identical on every rank that
       // evaluates the pair (see image_shifts)
       double R0, R1, R2 = 0.0, Va0, Va1, Va2 = 0.0, Vb0, Vb1, Vb2 = 0.0;
-      const int *jimg = gimg[j];
-      if ((jimg[0] | jimg[1] | jimg[2]) == 0) {
+      if (!(ef & E_IMAGE)) {
         // local partner or a plain copy of a remote atom: both ranks hold the same numbers
-        R0 = x[b][0] - x[a][0];
-        R1 = x[b][1] - x[a][1];
-        Va0 = v[a][0];
-        Va1 = v[a][1];
-        Vb0 = v[b][0];
-        Vb1 = v[b][1];
+        const double *xa = x + 3 * a, *xb = x + 3 * b, *va = v + 3 * a, *vb = v + 3 * b;
+        R0 = xb[0] - xa[0];
+        R1 = xb[1] - xa[1];
+        Va0 = va[0];
+        Va1 = va[1];
+        Vb0 = vb[0];
+        Vb1 = vb[1];
         if (D3) {
-          R2 = x[b][2] - x[a][2];
-          Va2 = v[a][2];
-          Vb2 = v[b][2];
+          R2 = xb[2] - xa[2];
+          Va2 = va[2];
+          Vb2 = vb[2];
         }
       } else {
+        const int *jimg = gimg0 + 3 * j;
         // image of b relative to a (j is the ghost: b's image if i is a, else minus a's)
         const double n0 = i_is_a ? jimg[0] : -jimg[0], n1 = i_is_a ? jimg[1] : -jimg[1];
-        const double *xa = xo[a], *xb = xo[b];
+        const double *xa = xo0 + 6 * a, *xb = xo0 + 6 * b;
         if (D3) {
           const double n2 = i_is_a ? jimg[2] : -jimg[2];
           R0 = (xb[0] - xa[0]) + (n0 * h[0] + n1 * h[5] + n2 * h[4]);
@@ -661,18 +722,19 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       const PairPre &P = pre[ip];
       const int jj = P.jj;
       const int j = P.j;
-      const double jtag = (double) tag[j];
-      const bool jlocal = j < nlocal;
+      const int ef = ef_i[jj];
+      const bool jlocal = ef & E_LOCAL;
       const double dbar = UNI ? dbar_u : radius[i] + radius[j];
-      const bool i_is_a = itag < jtag;
+      const bool i_is_a = ef & E_IA;
       const double sg = i_is_a ? 1.0 : -1.0;
       const int a = i_is_a ? i : j, b = i_is_a ? j : i;
       const double R0 = P.R0, R1 = P.R1, R2 = P.R2;
       const double Va0 = P.Va0, Va1 = P.Va1, Va2 = P.Va2, Vb0 = P.Vb0, Vb1 = P.Vb1, Vb2 = P.Vb2;
       const double rsq = P.rsq;
       int k = cache_i[jj];
-      const bool same_body = !mol || mol[i] == mol[j];
+      const bool same_body = ef & E_SAME;
       if (k < 0) {
+        const double jtag = (double) tag[j];
         const int ikind = init_links ? initial_link_kind(i, tag[j], rsq, dbar, same_body) : FS::FREE;
         const bool mklink = ikind != FS::FREE;
         if (rsq >= dbar * dbar && !mklink) continue;
@@ -697,7 +759,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         const int kj = find_slot(j, itag);
         mirror_i[jj] = (kj >= 0) ? kj : new_slot(j, itag);
       }
-      double *sj = jlocal ? slots[j] + mirror_i[jj] * FS::NSLOT : nullptr;
+      double *sj = jlocal ? slots + (bigint) j * slotrow + mirror_i[jj] * FS::NSLOT : nullptr;
       const double n0 = P.n0, n1 = P.n1, n2 = P.n2;
       const double idbar = P.idbar;
       const double eraw = P.eraw;
@@ -714,7 +776,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       }
 
       const double ra = UNI ? runi : radius[a], rb = UNI ? runi : radius[b];
-      const double *oa = omega[a], *ob = omega[b];
+      const double *oa = omega + 3 * a, *ob = omega + 3 * b;
       // ws = ra omega_a + rb omega_b, wxn = ws x n (2D: ws along z)
       double wxn0, wxn1, wxn2 = 0.0;
       if (D3) {
@@ -760,7 +822,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         if (linked0) {
           // plastic offsets: the pending plastic strain increments of a and b
           // (mean of the two halves of the pair) leave the elastic pair strain
-          const double *pa = &pin[a][1], *pb = &pin[b][1];
+          const double *pa = pin0 + 8 * a + 1, *pb = pin0 + 8 * b + 1;
           // (tensor order xx yy zz xy xz yz; in 2D the zz increment does not act on in-plane
           // pairs and xz, yz vanish)
           const double D0 = 0.5 * (pa[0] + pb[0]), D1 = 0.5 * (pa[1] + pb[1]),
@@ -797,7 +859,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
 
       const double A = UNI ? A_u : pair_area(dbar, DIM);
       const double sf = G2 * idbar;    // shear_factor(mat, dbar)
-      const double Xbar = 0.5 * (pin[a][0] + pin[b][0]);    // (see compute)
+      const double Xbar = 0.5 * (pin0[8 * a] + pin0[8 * b]);    // (see compute)
       const bool cross = !same_body;
       double sn = 0.0, t0 = 0.0, t1 = 0.0, t2v = 0.0;
 
@@ -918,7 +980,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       const double Ms0 = D3 ? si * Ma0 : 0.0, Ms1 = D3 ? si * Ma1 : 0.0, Ms2 = si * Ma2;
       auto apply = [&](int q, bool plus, double delx, double dely, double delz) {
         const double rq = UNI ? runi : radius[q];
-        double *fq = f[q], *tq = torque[q], *acc = sacc[q];
+        double *fq = f + 3 * q, *tq = torque + 3 * q, *acc = sacc0 + 8 * q;
         const double T2 = rq * nxF2;
         if (plus) {
           fq[0] += Fs0;
@@ -959,8 +1021,8 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       apply(i, true, -dx, -dy, -dz);
       if (sj) {
         apply(j, false, dx, dy, dz);
-        // j's copy of the state: written when it is next read (fix mca/state, sync_mirrors)
-        fix->add_mirror(i, k, j, mirror_i[jj]);
+        // j's copy of the state: written when it is next read (sync_mirrors)
+        any_mirror = true;
       }
       if (i_is_a && !attached) {
         if (linked) {
@@ -971,6 +1033,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       }
     }
   }
+  if (any_mirror) mirrors_pending = 1;
   tally[0] = tally_links;
   tally[1] = tally_cross;
   tally[2] = tally_contacts;
@@ -984,25 +1047,26 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
    Hooke's law with plastic strain).
 ------------------------------------------------------------------------- */
 
-void PairMCA::automaton_update(int i, bool advance, double V)
+template <int DIM> void PairMCA::automaton_update(int i, bool advance, double iV)
 {
-  double *am = fix->autom[i];
-  const int dim = mat.dim;
+  // (rows of contiguous per-atom arrays)
+  double *am = fix->autom[0] + (bigint) i * FS::NAUTO;
+  const double *acc = sacc[0] + 8 * (bigint) i;
   double sig[6];
   double X;
-  if (dim == 2) {
-    sig[0] = sacc[i][0] / V;
-    sig[1] = sacc[i][1] / V;
-    sig[3] = sacc[i][3] / V;
-    sig[2] = sig[4] = sig[5] = 0.0;
+  if (DIM == 2) {
+    sig[0] = acc[0] * iV;
+    sig[1] = acc[1] * iV;
+    sig[3] = acc[3] * iV;
+    sig[4] = sig[5] = 0.0;
     X = 0.5 * (sig[0] + sig[1]) - mat.G * am[FS::A_EPT + 2];
     sig[2] = mat.alpha * X - 2.0 * mat.G * am[FS::A_EPT + 2];
   } else {
-    for (int c = 0; c < 6; c++) sig[c] = sacc[i][c] / V;
+    for (int c = 0; c < 6; c++) sig[c] = acc[c] * iV;
     X = (sig[0] + sig[1] + sig[2]) / 3.0;
   }
-  double dep[6], seq_el;
-  const double dg = radial_return(mat, sig, am[FS::A_EEQ], dep, &seq_el);
+  double dep[6], seq;
+  const double dg = radial_return(mat, sig, am[FS::A_EEQ], dep, seq);
   if (advance) {
     for (int c = 0; c < 6; c++) {
       am[FS::A_DEP + c] = dep[c];
@@ -1013,15 +1077,15 @@ void PairMCA::automaton_update(int i, bool advance, double V)
     am[FS::A_X] = X;
   }
   for (int c = 0; c < 6; c++) am[FS::A_SIG + c] = sig[c];
-  am[FS::A_NL] = sacc[i][6];
-  am[FS::A_NC] = sacc[i][7];
-  am[FS::A_SEQ] = (seq_el >= 0.0) ? seq_el : von_mises(sig);
-  double *o = fix->out[i];
+  am[FS::A_NL] = acc[6];
+  am[FS::A_NC] = acc[7];
+  am[FS::A_SEQ] = seq;
+  double *o = fix->out[0] + (bigint) i * FS::NOUT;
   for (int c = 0; c < 6; c++) o[c] = sig[c];
   o[6] = am[FS::A_EEQ];
-  o[7] = sacc[i][6];
-  o[8] = sacc[i][7];
-  o[9] = am[FS::A_SEQ];
+  o[7] = acc[6];
+  o[8] = acc[7];
+  o[9] = seq;
 }
 
 /* ---------------------------------------------------------------------- */

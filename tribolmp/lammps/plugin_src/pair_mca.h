@@ -43,6 +43,7 @@ class PairMCA : public Pair {
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
   double memory_usage() override;
+  void sync_mirrors();
 
   enum { NTALLY = 7 };
 
@@ -57,9 +58,18 @@ class PairMCA : public Pair {
   int **cache;          // unused (kept for layout clarity)
   int *ncache;
   int maxcache_atoms;
-  int *cacheflat;       // slot index of each neighbour of each local atom (-1: none)
-  int *mirrorflat;      // for a local neighbour with a larger ID: its slot for this atom
-  bigint *cacheoff;     // offset of atom i's neighbours in cacheflat
+  // evaluation lists (rebuild_cache): the pairs each local automaton evaluates, in the
+  // neighbour list's order -- every ghost partner but its own image, and the local partners
+  // with a larger ID
+  enum { E_IA = 1, E_LOCAL = 2, E_IMAGE = 4, E_SAME = 8 };    // i is a; j local; image; same body
+  int *ej;              // partner index
+  int *eflag;           // E_* bits
+  int *cacheflat;       // slot index of i for the pair (-1: none)
+  int *mirrorflat;      // local partner: its slot for i (-1: none)
+  bigint *cacheoff;     // offset of atom i's pairs (-1: none)
+  int *ecount;          // number of atom i's pairs
+  int ncached;          // local atoms when the lists were built
+  int mirrors_pending;  // 1: the partners' copies of local pairs are behind (sync_mirrors)
   bigint maxflat;
   double **sacc;        // Love-Weber sums and link counts of local atoms
   int maxsacc;
@@ -85,7 +95,7 @@ class PairMCA : public Pair {
   int find_slot(int i, double jtag);
   int new_slot(int i, double jtag);
   int initial_link_kind(int i, tagint jtag, double rsq, double dbar, bool same_body);
-  void automaton_update(int i, bool advance, double V);
+  template <int DIM> void automaton_update(int i, bool advance, double iV);
   template <int DIM, bool ADV, bool UNI> void pair_loop(bool init_links, double *tally, double runi);
 };
 
