@@ -73,8 +73,8 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   pin = nullptr;
   gimg = nullptr;
   maxxo = 0;
-  pre = nullptr;
-  maxpre = 0;
+  bat = nullptr;
+  maxecount = 0;
 }
 
 PairMCA::~PairMCA()
@@ -90,7 +90,7 @@ PairMCA::~PairMCA()
   memory->destroy(xo);
   memory->destroy(pin);
   memory->destroy(gimg);
-  delete[] pre;
+  delete bat;
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -289,6 +289,7 @@ void PairMCA::rebuild_cache()
     cacheoff[i] = -1;
     ecount[i] = 0;
   }
+  maxecount = 0;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const double itag = (double) tag[i];
@@ -322,6 +323,7 @@ void PairMCA::rebuild_cache()
     }
     ecount[i] = ne;
     off += ne;
+    if (ne > maxecount) maxecount = ne;
     for (int k = 0; k < mp; k++) {
       double *s = fix->slot(i, k);
       if (s[FS::S_TAG] == 0.0 || seen[k]) continue;
@@ -573,7 +575,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   const double alpha = mat.alpha;
   // UNI: all automata have the radius runi, so the pair constants are the same for every pair
   // (the same expressions, evaluated once)
-  const double dbar_u = runi + runi, idbar_u = 1.0 / dbar_u;
+  const double dbar_u = runi + runi;
   const double A_u = pair_area(dbar_u, DIM), kr_u = rotational_stiffness(mat, A_u, dbar_u);
   const double cv_u = viscous_factor(mat, A_u, dbar_u);
   double tally_links = 0.0, tally_cross = 0.0, tally_contacts = 0.0;
@@ -581,17 +583,91 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   int *ilist = list->ilist;
   bool any_mirror = false;
 
-  for (int ii = 0; ii < inum; ii++) {
+  // the batch of pairs (pass 1 fills it for a run of automata, pass 2a computes the common
+  // case of all of them at once, pass 2b applies them in order)
+  if (!bat) bat = new Batch();
+  Batch &B = *bat;
+
+  // a pair's force F (on a), signed force and moment Fs, Ms (on i), n x F and the Love-Weber
+  // dyad L (xx yy zz xy xz yz) added to i and, when j is local, subtracted from j (F_b = -F_a,
+  // M_b = -M_a; x - y is x + (-1) y exactly).  Both automata see the same n x F (n and F both
+  // change sign) and the same n (x) F_e; the torque of the tangential force is r n x F
+  auto scatter = [&](int i, int j, bool jlocal, bool i_is_a, bool cross, int kind, double R0,
+                     double R1, double R2, const double *Fv, const double *Fsv, const double *Msv,
+                     const double *nxF, const double *Lv) {
+    const bool attached = (kind == FS::ATTACH);
+    const bool linked = (kind == FS::LINK || kind == FS::WELD || attached);
+    const bool counted = linked && !attached;    // attachments (to rigid layers) are not links
+    const double sg = i_is_a ? 1.0 : -1.0;
+    const double dx = sg * R0, dy = sg * R1, dz = sg * R2;
+    auto apply = [&](int q, bool plus, double delx, double dely, double delz) {
+      const double rq = UNI ? runi : radius[q];
+      double *fq = f + 3 * q, *tq = torque + 3 * q, *acc = sacc0 + 8 * q;
+      const double T2 = rq * nxF[2];
+      if (plus) {
+        fq[0] += Fsv[0];
+        fq[1] += Fsv[1];
+        tq[2] += T2 + Msv[2];
+      } else {
+        fq[0] -= Fsv[0];
+        fq[1] -= Fsv[1];
+        tq[2] += T2 - Msv[2];
+      }
+      acc[0] += rq * Lv[0];
+      acc[1] += rq * Lv[1];
+      acc[3] += rq * Lv[3];
+      if (D3) {
+        const double T0 = rq * nxF[0], T1 = rq * nxF[1];
+        if (plus) {
+          fq[2] += Fsv[2];
+          tq[0] += T0 + Msv[0];
+          tq[1] += T1 + Msv[1];
+        } else {
+          fq[2] -= Fsv[2];
+          tq[0] += T0 - Msv[0];
+          tq[1] += T1 - Msv[1];
+        }
+        acc[2] += rq * Lv[2];
+        acc[4] += rq * Lv[4];
+        acc[5] += rq * Lv[5];
+      }
+      if (evflag) {
+        const double si = i_is_a ? 1.0 : -1.0;
+        const double sq = plus ? si : -si;
+        ev_tally_xyz_full(q, 0.0, 0.0, sq * Fv[0], sq * Fv[1], sq * Fv[2], delx, dely, delz);
+      }
+      if (counted) {
+        acc[6] += 1.0;
+        if (cross) acc[7] += 1.0;
+      }
+    };
+    apply(i, true, -dx, -dy, -dz);
+    if (jlocal) {
+      apply(j, false, dx, dy, dz);
+      // j's copy of the state: written when it is next read (sync_mirrors)
+      any_mirror = true;
+    }
+    if (i_is_a && !attached) {
+      if (linked) {
+        tally_links += 1.0;
+        if (cross) tally_cross += 1.0;
+      } else
+        tally_contacts += 1.0;
+    }
+  };
+  // (a batch may end inside the pairs of an automaton: jj0 is where the next one resumes)
+  int ii = 0, jj0 = 0;
+  while (ii < inum) {
+  int npre = 0;
+  for (; ii < inum && npre < NBATCH; ii++) {
     const int i = ilist[ii];
-    const double itag = (double) tag[i];
     // the pairs i evaluates (rebuild_cache): partner, orientation, image and body flags
     const bigint eoff = cacheoff[i];
     const int jnum = ecount[i];
     const int *ej_i = &ej[eoff], *ef_i = &eflag[eoff];
     int *cache_i = &cacheflat[eoff];
-    int *mirror_i = &mirrorflat[eoff];
     double *slots_i = slots + (bigint) i * slotrow;
-    if (ii + 1 < inum) {
+    if (jj0 == 0 && ii + 1 < inum) {
       // the slots of the next automaton (the loop over automata is the memory stream that
       // the hardware prefetcher does not see: rows are maxpartner slots apart)
       const double *nxt = slots + (bigint) ilist[ii + 1] * slotrow;
@@ -603,13 +679,8 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
     // the tangential rescaling's division for all pairs first, so that their latencies
     // overlap instead of lying on each pair's chain of dependent operations; the same
     // expressions on the same inputs as in pass 2's place, so the same numbers)
-    if (jnum > maxpre) {
-      maxpre = jnum + 8;
-      delete[] pre;
-      pre = new PairPre[maxpre];
-    }
-    int npre = 0;
-    for (int jj = 0; jj < jnum; jj++) {
+    int jj = jj0;
+    for (; jj < jnum && npre < NBATCH; jj++) {
       const int j = ej_i[jj];
       const int ef = ef_i[jj];
       const double dbar = UNI ? dbar_u : radius[i] + radius[j];
@@ -673,60 +744,137 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       const int k1 = cache_i[jj];
       // a pair with no state that does not touch: nothing to do (initial links aside)
       if (k1 < 0 && !init_links && rsq >= dbar * dbar) continue;
-      PairPre &P = pre[npre++];
-      P.jj = jj;
-      P.j = j;
-      P.R0 = R0;
-      P.R1 = R1;
-      P.R2 = R2;
-      P.Va0 = Va0;
-      P.Va1 = Va1;
-      P.Va2 = Va2;
-      P.Vb0 = Vb0;
-      P.Vb1 = Vb1;
-      P.Vb2 = Vb2;
-      P.rsq = rsq;
-      const double r = std::sqrt(rsq);
-      const double ir = 1.0 / r;
-      const double n0 = R0 * ir, n1 = R1 * ir, n2 = D3 ? R2 * ir : 0.0;
-      const double idbar = UNI ? idbar_u : 1.0 / dbar;
-      P.r = r;
-      P.n0 = n0;
-      P.n1 = n1;
-      P.n2 = n2;
-      P.idbar = idbar;
-      P.eraw = r * idbar - 1.0;
-      P.proj = 0;
+      const int ip = npre++;
+      B.i[ip] = i;
+      B.ia[ip] = i_is_a ? 1.0 : 0.0;
+      B.jj[ip] = jj;
+      B.j[ip] = j;
+      B.R0[ip] = R0;
+      B.R1[ip] = R1;
+      B.R2[ip] = R2;
+      B.Va0[ip] = Va0;
+      B.Va1[ip] = Va1;
+      B.Va2[ip] = Va2;
+      B.Vb0[ip] = Vb0;
+      B.Vb1[ip] = Vb1;
+      B.Vb2[ip] = Vb2;
+      B.rsq[ip] = rsq;
+      if (!UNI) B.dbar[ip] = dbar;
+      // (a pair without a slot gets one in pass 2b with xi = 0: no projection.  Only this
+      // pair writes its slot, so pass 2b reads the same xi)
+      B.hasxi[ip] = (ADV && k1 >= 0) ? 1.0 : 0.0;
+      // inputs of pass 2a (the common case: an existing link, advanced)
       if (ADV && k1 >= 0) {
-        // (a pair without a slot gets one in pass 2 with xi = 0: no projection.  Only this
-        // pair writes its slot, so pass 2 reads the same xi)
-        const double *xi = &slots_i[k1 * FS::NSLOT + FS::S_XI];
-        const double xi0 = xi[0], xi1 = xi[1], xi2 = D3 ? xi[2] : 0.0;
-        const double xn = D3 ? xi0 * n0 + xi1 * n1 + xi2 * n2 : xi0 * n0 + xi1 * n1;
-        const double m0 = D3 ? xi0 * xi0 + xi1 * xi1 + xi2 * xi2 : xi0 * xi0 + xi1 * xi1;
-        if (xn != 0.0 && m0 > 0.0) {
-          // projection removes xn^2 of |xi|^2; restore the magnitude, sqrt(m0/(m0 - xn^2)).
-          // The normal turns by ~1e-6 rad per step, so q = xn^2/m0 ~ 1e-12 and the series
-          // 1 + q/2 + 3q^2/8 is exact to round-off (error 5q^3/16); the square root only if not
-          const double q = xn * xn / m0;
-          P.sc = (q < 1e-4) ? 1.0 + q * (0.5 + 0.375 * q)
-                            : ((q < 1.0) ? std::sqrt(1.0 / (1.0 - q)) : 0.0);
-          P.xn = xn;
-          P.proj = 1;
+        const double *sl = &slots_i[k1 * FS::NSLOT];
+        const double *oa = omega + 3 * a, *ob = omega + 3 * b;
+        const double *pa = pin0 + 8 * a, *pb = pin0 + 8 * b;
+        B.kind[ip] = sl[FS::S_KIND];
+        B.pn[ip] = sl[FS::S_PN];
+        B.cd[ip] = sl[FS::S_CD];
+        B.cr[ip] = sl[FS::S_CR];
+        B.xi0[ip] = sl[FS::S_XI];
+        B.xi1[ip] = sl[FS::S_XI + 1];
+        B.rp0[ip] = sl[FS::S_RP];
+        B.rp1[ip] = sl[FS::S_RP + 1];
+        B.th2[ip] = sl[FS::S_TH + 2];
+        B.oa2[ip] = oa[2];
+        B.ob2[ip] = ob[2];
+        B.Xbar[ip] = 0.5 * (pa[0] + pb[0]);
+        B.D0[ip] = 0.5 * (pa[1] + pb[1]);
+        B.D1[ip] = 0.5 * (pa[2] + pb[2]);
+        B.D3[ip] = 0.5 * (pa[4] + pb[4]);
+        if (D3) {
+          B.xi2[ip] = sl[FS::S_XI + 2];
+          B.rp2[ip] = sl[FS::S_RP + 2];
+          B.th0[ip] = sl[FS::S_TH];
+          B.th1[ip] = sl[FS::S_TH + 1];
+          B.oa0[ip] = oa[0];
+          B.oa1[ip] = oa[1];
+          B.ob0[ip] = ob[0];
+          B.ob1[ip] = ob[1];
+          B.D2[ip] = 0.5 * (pa[3] + pb[3]);
+          B.D4[ip] = 0.5 * (pa[5] + pb[5]);
+          B.D5[ip] = 0.5 * (pa[6] + pb[6]);
         }
+        if (!UNI) {
+          B.ra[ip] = radius[a];
+          B.rb[ip] = radius[b];
+        }
+      } else {
+        B.kind[ip] = FS::FREE;    // (not the common case: pass 2b's general path)
+        B.xi0[ip] = B.xi1[ip] = B.xi2[ip] = 0.0;
       }
     }
+    if (jj < jnum) {    // the batch is full: the rest of i's pairs start the next one
+      jj0 = jj;
+      break;
+    }
+    jj0 = 0;
+  }
 
-    // pass 2: the law, pair by pair
-    for (int ip = 0; ip < npre; ip++) {
-      const PairPre &P = pre[ip];
+  // pass 1b: the geometry of the batch's pairs (square roots and divisions in vectorised loops)
+  batch_geometry<DIM, UNI>(npre, runi);
+
+  // pass 2a: the common case for the whole batch -- an existing link (or weld, attachment)
+  // advanced by one step that does not break and whose damping constants are set -- in loops
+  // without branches over the batch's arrays, which the compiler vectorises.  The same
+  // expressions in the same order as the general path (pass 2b), so the same numbers; a pair
+  // outside the common case (elig = 0) takes the general path with its state untouched
+  if (ADV && !init_links) batch_common<DIM, UNI>(npre, runi);
+
+  // pass 2b: the law, pair by pair, in the order of the pairs (so that the sums into forces,
+  // torques and stresses are formed in the same order as without batches)
+  for (int ip = 0; ip < npre; ip++) {
+      if (ADV && !init_links && B.elig[ip]) {
+        // the common case (pass 2a): write the advanced state back, apply the forces
+        const int i = B.i[ip], jj = B.jj[ip], j = B.j[ip];
+        const bigint e = cacheoff[i] + jj;
+        const int ef = eflag[e];
+        const bool jlocal = ef & E_LOCAL;
+        double *s = slots + (bigint) i * slotrow + cacheflat[e] * FS::NSLOT;
+        if (jlocal && mirrorflat[e] < 0) {
+          // (as in the general path below)
+          const int kj = find_slot(j, (double) tag[i]);
+          mirrorflat[e] = (kj >= 0) ? kj : new_slot(j, (double) tag[i]);
+        }
+        const double R0 = B.R0[ip], R1 = B.R1[ip], R2 = D3 ? B.R2[ip] : 0.0;
+        s[FS::S_XI] = B.xi0n[ip];
+        s[FS::S_XI + 1] = B.xi1n[ip];
+        s[FS::S_RP] = R0;
+        s[FS::S_RP + 1] = R1;
+        s[FS::S_PN] = B.pnn[ip];
+        s[FS::S_TH + 2] = B.th2n[ip];
+        if (D3) {
+          s[FS::S_XI + 2] = B.xi2n[ip];
+          s[FS::S_RP + 2] = R2;
+          s[FS::S_TH] = B.th0n[ip];
+          s[FS::S_TH + 1] = B.th1n[ip];
+        }
+        const double Fv[3] = {B.F0[ip], B.F1[ip], D3 ? B.F2[ip] : 0.0};
+        const double Fsv[3] = {B.Fs0[ip], B.Fs1[ip], D3 ? B.Fs2[ip] : 0.0};
+        const double Msv[3] = {D3 ? B.Ms0[ip] : 0.0, D3 ? B.Ms1[ip] : 0.0, B.Ms2[ip]};
+        const double nxFv[3] = {D3 ? B.nxF0[ip] : 0.0, D3 ? B.nxF1[ip] : 0.0, B.nxF2[ip]};
+        const double Lv[6] = {B.L0[ip], B.L1[ip], D3 ? B.L2[ip] : 0.0, B.L3[ip],
+                              D3 ? B.L4[ip] : 0.0, D3 ? B.L5[ip] : 0.0};
+        scatter(i, j, jlocal, ef & E_IA, !(ef & E_SAME), static_cast<int>(B.kind[ip]), R0, R1, R2,
+                Fv, Fsv, Msv, nxFv, Lv);
+        continue;
+      }
+      PairPre P;
+      B.get(ip, P);
+      const int i = P.i;
+      const double itag = (double) tag[i];
+      const bigint eoff = cacheoff[i];
+      const int *ef_i = &eflag[eoff];
+      int *cache_i = &cacheflat[eoff];
+      int *mirror_i = &mirrorflat[eoff];
+      double *slots_i = slots + (bigint) i * slotrow;
       const int jj = P.jj;
       const int j = P.j;
       const int ef = ef_i[jj];
       const bool jlocal = ef & E_LOCAL;
       const double dbar = UNI ? dbar_u : radius[i] + radius[j];
       const bool i_is_a = ef & E_IA;
-      const double sg = i_is_a ? 1.0 : -1.0;
       const int a = i_is_a ? i : j, b = i_is_a ? j : i;
       const double R0 = P.R0, R1 = P.R1, R2 = P.R2;
       const double Va0 = P.Va0, Va1 = P.Va1, Va2 = P.Va2, Vb0 = P.Vb0, Vb1 = P.Vb1, Vb2 = P.Vb2;
@@ -764,6 +912,24 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       const double idbar = P.idbar;
       const double eraw = P.eraw;
       int kind = static_cast<int>(s[FS::S_KIND]);
+      const bool cross = !same_body;
+      // forces, torques, Love-Weber sums and tallies of the pair
+      auto tail = [&](double Fe0, double Fe1, double Fe2, double Fd0, double Fd1, double Fd2,
+                      double Ma0, double Ma1, double Ma2, int kind) {
+        // (the expressions of pass 2a's, pair_force)
+        const double F0 = Fe0 + Fd0, F1 = Fe1 + Fd1, F2 = D3 ? Fe2 + Fd2 : 0.0;
+        const double nxF0 = D3 ? n1 * F2 - n2 * F1 : 0.0, nxF1 = D3 ? n2 * F0 - n0 * F2 : 0.0;
+        const double nxF2 = n0 * F1 - n1 * F0;
+        const double L0 = n0 * Fe0, L1 = n1 * Fe1, L3 = 0.5 * (n0 * Fe1 + n1 * Fe0);
+        const double L2 = D3 ? n2 * Fe2 : 0.0, L4 = D3 ? 0.5 * (n0 * Fe2 + n2 * Fe0) : 0.0,
+                     L5 = D3 ? 0.5 * (n1 * Fe2 + n2 * Fe1) : 0.0;
+        const double si = i_is_a ? 1.0 : -1.0;
+        const double Fs0 = si * F0, Fs1 = si * F1, Fs2 = D3 ? si * F2 : 0.0;
+        const double Ms0 = D3 ? si * Ma0 : 0.0, Ms1 = D3 ? si * Ma1 : 0.0, Ms2 = si * Ma2;
+        const double Fv[3] = {F0, F1, F2}, Fsv[3] = {Fs0, Fs1, Fs2}, Msv[3] = {Ms0, Ms1, Ms2};
+        const double nxFv[3] = {nxF0, nxF1, nxF2}, Lv[6] = {L0, L1, L2, L3, L4, L5};
+        scatter(i, j, sj != nullptr, i_is_a, cross, kind, R0, R1, R2, Fv, Fsv, Msv, nxFv, Lv);
+      };
 
       if (kind == FS::CONTACT && eraw >= 0.0) {    // contact opened: forget it
         memset(s, 0, sizeof(double) * FS::NSLOT);
@@ -860,7 +1026,6 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       const double A = UNI ? A_u : pair_area(dbar, DIM);
       const double sf = G2 * idbar;    // shear_factor(mat, dbar)
       const double Xbar = 0.5 * (pin0[8 * a] + pin0[8 * b]);    // (see compute)
-      const bool cross = !same_body;
       double sn = 0.0, t0 = 0.0, t1 = 0.0, t2v = 0.0;
 
       if (linked0) {
@@ -961,82 +1126,191 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         Ma2 = kr * th[2] + cr * (ob[2] - oa[2]);
       }
 
-      // force and torque on i (and on j when it is local: F_b = -F_a).  Both automata see the
-      // same n x F (n and F both change sign) and the same Love-Weber dyad n (x) F_e, so each is
-      // formed once; the torque of the tangential force is r n x F (n x n F_n = 0)
-      const double F0 = Fe0 + Fd0, F1 = Fe1 + Fd1, F2 = D3 ? Fe2 + Fd2 : 0.0;
-      const double nxF0 = D3 ? n1 * F2 - n2 * F1 : 0.0, nxF1 = D3 ? n2 * F0 - n0 * F2 : 0.0;
-      const double nxF2 = n0 * F1 - n1 * F0;
-      const double L0 = n0 * Fe0, L1 = n1 * Fe1, L3 = 0.5 * (n0 * Fe1 + n1 * Fe0);
-      const double L2 = D3 ? n2 * Fe2 : 0.0, L4 = D3 ? 0.5 * (n0 * Fe2 + n2 * Fe0) : 0.0,
-                   L5 = D3 ? 0.5 * (n1 * Fe2 + n2 * Fe1) : 0.0;
-      const bool counted = linked && !attached;    // attachments (to rigid layers) are not links
-      const double dx = sg * R0, dy = sg * R1, dz = sg * R2;
-      // F_b = -F_a and M_b = -M_a: the signed force and moment once, added to i and
-      // subtracted from j (x - y is x + (-1) y exactly); with one radius the torque of the
-      // tangential force and the Love-Weber sums are the same for both automata
-      const double si = i_is_a ? 1.0 : -1.0;
-      const double Fs0 = si * F0, Fs1 = si * F1, Fs2 = D3 ? si * F2 : 0.0;
-      const double Ms0 = D3 ? si * Ma0 : 0.0, Ms1 = D3 ? si * Ma1 : 0.0, Ms2 = si * Ma2;
-      auto apply = [&](int q, bool plus, double delx, double dely, double delz) {
-        const double rq = UNI ? runi : radius[q];
-        double *fq = f + 3 * q, *tq = torque + 3 * q, *acc = sacc0 + 8 * q;
-        const double T2 = rq * nxF2;
-        if (plus) {
-          fq[0] += Fs0;
-          fq[1] += Fs1;
-          tq[2] += T2 + Ms2;
-        } else {
-          fq[0] -= Fs0;
-          fq[1] -= Fs1;
-          tq[2] += T2 - Ms2;
-        }
-        acc[0] += rq * L0;
-        acc[1] += rq * L1;
-        acc[3] += rq * L3;
-        if (D3) {
-          const double T0 = rq * nxF0, T1 = rq * nxF1;
-          if (plus) {
-            fq[2] += Fs2;
-            tq[0] += T0 + Ms0;
-            tq[1] += T1 + Ms1;
-          } else {
-            fq[2] -= Fs2;
-            tq[0] += T0 - Ms0;
-            tq[1] += T1 - Ms1;
-          }
-          acc[2] += rq * L2;
-          acc[4] += rq * L4;
-          acc[5] += rq * L5;
-        }
-        if (evflag) {
-          const double sq = plus ? si : -si;
-          ev_tally_xyz_full(q, 0.0, 0.0, sq * F0, sq * F1, sq * F2, delx, dely, delz);
-        }
-        if (counted) {
-          acc[6] += 1.0;
-          if (cross) acc[7] += 1.0;
-        }
-      };
-      apply(i, true, -dx, -dy, -dz);
-      if (sj) {
-        apply(j, false, dx, dy, dz);
-        // j's copy of the state: written when it is next read (sync_mirrors)
-        any_mirror = true;
-      }
-      if (i_is_a && !attached) {
-        if (linked) {
-          tally_links += 1.0;
-          if (cross) tally_cross += 1.0;
-        } else
-          tally_contacts += 1.0;
-      }
-    }
+      tail(Fe0, Fe1, Fe2, Fd0, Fd1, Fd2, Ma0, Ma1, Ma2, kind);
+  }
   }
   if (any_mirror) mirrors_pending = 1;
   tally[0] = tally_links;
   tally[1] = tally_cross;
   tally[2] = tally_contacts;
+}
+
+/* ----------------------------------------------------------------------
+   pass 1b of pair_loop: distance, normal, raw strain and the rescaling of the
+   tangential displacement that keeps its magnitude when it is turned into
+   the new tangent plane, for every pair of a batch (branches are selects)
+------------------------------------------------------------------------- */
+
+template <int DIM, bool UNI> void PairMCA::batch_geometry(int n, double runi)
+{
+  constexpr bool D3 = (DIM == 3);
+  Batch &B = *bat;
+  const double idbar_u = 1.0 / (runi + runi);
+  for (int p = 0; p < n; p++) {
+    const double r = std::sqrt(B.rsq[p]);
+    const double ir = 1.0 / r;
+    const double n0 = B.R0[p] * ir, n1 = B.R1[p] * ir, n2 = D3 ? B.R2[p] * ir : 0.0;
+    const double idbar = UNI ? idbar_u : 1.0 / B.dbar[p];
+    B.r[p] = r;
+    B.n0[p] = n0;
+    B.n1[p] = n1;
+    B.n2[p] = n2;
+    B.idbar[p] = idbar;
+    B.eraw[p] = r * idbar - 1.0;
+    const double xi0 = B.xi0[p], xi1 = B.xi1[p], xi2 = D3 ? B.xi2[p] : 0.0;
+    const double xn = D3 ? xi0 * n0 + xi1 * n1 + xi2 * n2 : xi0 * n0 + xi1 * n1;
+    const double m0 = D3 ? xi0 * xi0 + xi1 * xi1 + xi2 * xi2 : xi0 * xi0 + xi1 * xi1;
+    // projection removes xn^2 of |xi|^2; restore the magnitude, sqrt(m0/(m0 - xn^2)).
+    // The normal turns by ~1e-6 rad per step, so q = xn^2/m0 ~ 1e-12 and the series
+    // 1 + q/2 + 3q^2/8 is exact to round-off (error 5q^3/16); the square root only if not.
+    // (Lanes without a projection may divide by zero: their results are not selected)
+    const bool proj = B.hasxi[p] != 0.0 && xn != 0.0 && m0 > 0.0;
+    const double q = xn * xn / m0;
+    const double sc = (q < 1e-4) ? 1.0 + q * (0.5 + 0.375 * q)
+                                 : ((q < 1.0) ? std::sqrt(1.0 / (1.0 - q)) : 0.0);
+    B.sc[p] = proj ? sc : 1.0;
+    B.xn[p] = proj ? xn : 0.0;
+    B.proj[p] = proj ? 1.0 : 0.0;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   pass 2a of pair_loop: the common case of every pair of a batch -- an
+   existing link, weld or attachment advanced by one step -- as straight-line
+   arithmetic over the batch's arrays (branches are selects, so the loop
+   vectorises).  The expressions and their order are those of the general
+   path in pair_loop, so a pair gets the same numbers on either path.  elig
+   is 1 where the result stands: linked, not breaking this step, damping
+   constants set (else the general path redoes the pair from its state).
+------------------------------------------------------------------------- */
+
+template <int DIM, bool UNI> void PairMCA::batch_common(int n, double runi)
+{
+  constexpr bool D3 = (DIM == 3);
+  Batch &B = *bat;
+  const double dt = update->dt;
+  const double G2 = 2.0 * mat.G;
+  const double alpha = mat.alpha;
+  const double s_link = mat.s0, s_weld = mat.wfac * mat.s0;
+  const bool damp_on = mat.damp > 0.0;
+  const double dbar_u = runi + runi;
+  const double A_u = pair_area(dbar_u, DIM), kr_u = rotational_stiffness(mat, A_u, dbar_u);
+  const double LINK = FS::LINK, WELD = FS::WELD, ATTACH = FS::ATTACH;
+  for (int p = 0; p < n; p++) {
+    const double kind = B.kind[p];
+    const double n0 = B.n0[p], n1 = B.n1[p], n2 = D3 ? B.n2[p] : 0.0;
+    const double ra = UNI ? runi : B.ra[p], rb = UNI ? runi : B.rb[p];
+    const double dbar = UNI ? dbar_u : B.dbar[p];
+    const double oa2 = B.oa2[p], ob2 = B.ob2[p];
+    double wxn0, wxn1, wxn2 = 0.0;
+    if (D3) {
+      const double ws0 = ra * B.oa0[p] + rb * B.ob0[p], ws1 = ra * B.oa1[p] + rb * B.ob1[p],
+                   ws2 = ra * oa2 + rb * ob2;
+      wxn0 = ws1 * n2 - ws2 * n1;
+      wxn1 = ws2 * n0 - ws0 * n2;
+      wxn2 = ws0 * n1 - ws1 * n0;
+    } else {
+      const double ws2 = ra * oa2 + rb * ob2;
+      wxn0 = -(ws2 * n1);
+      wxn1 = ws2 * n0;
+    }
+    const double vr0 = B.Vb0[p] - B.Va0[p] - wxn0, vr1 = B.Vb1[p] - B.Va1[p] - wxn1;
+    const double vr2 = D3 ? B.Vb2[p] - B.Va2[p] - wxn2 : 0.0;
+    double xi0 = B.xi0[p], xi1 = B.xi1[p], xi2 = D3 ? B.xi2[p] : 0.0;
+    const bool proj = B.proj[p] != 0.0;
+    const double sc = B.sc[p], xn = B.xn[p];
+    xi0 = proj ? sc * (xi0 - xn * n0) : xi0;
+    xi1 = proj ? sc * (xi1 - xn * n1) : xi1;
+    if (D3) xi2 = proj ? sc * (xi2 - xn * n2) : xi2;
+    const double R0 = B.R0[p], R1 = B.R1[p], R2 = D3 ? B.R2[p] : 0.0;
+    const double du0 = R0 - B.rp0[p] - dt * wxn0, du1 = R1 - B.rp1[p] - dt * wxn1;
+    const double du2 = D3 ? R2 - B.rp2[p] - dt * wxn2 : 0.0;
+    const double dun = D3 ? du0 * n0 + du1 * n1 + du2 * n2 : du0 * n0 + du1 * n1;
+    xi0 += du0 - dun * n0;
+    xi1 += du1 - dun * n1;
+    if (D3) xi2 += du2 - dun * n2;
+    double pn = B.pn[p];
+    const double D0 = B.D0[p], D1 = B.D1[p], D3xy = B.D3[p];
+    double th0 = 0.0, th1 = 0.0;
+    if (D3) {
+      const double D2 = B.D2[p], D4 = B.D4[p], D5 = B.D5[p];
+      const double dsum = std::fabs(D0) + std::fabs(D1) + std::fabs(D2) + std::fabs(D3xy) +
+          std::fabs(D4) + std::fabs(D5);
+      const double Dn0 = D0 * n0 + D3xy * n1 + D4 * n2, Dn1 = D3xy * n0 + D1 * n1 + D5 * n2,
+                   Dn2 = D4 * n0 + D5 * n1 + D2 * n2;
+      const double nDn = n0 * Dn0 + n1 * Dn1 + n2 * Dn2;
+      const bool pl = dsum > 0.0;
+      pn = pl ? pn + nDn : pn;
+      xi0 = pl ? xi0 - dbar * (Dn0 - nDn * n0) : xi0;
+      xi1 = pl ? xi1 - dbar * (Dn1 - nDn * n1) : xi1;
+      xi2 = pl ? xi2 - dbar * (Dn2 - nDn * n2) : xi2;
+      th0 = B.th0[p] + dt * (B.ob0[p] - B.oa0[p]);
+      th1 = B.th1[p] + dt * (B.ob1[p] - B.oa1[p]);
+    } else {
+      const double dsum = std::fabs(D0) + std::fabs(D1) + std::fabs(D3xy);
+      const double Dn0 = D0 * n0 + D3xy * n1, Dn1 = D3xy * n0 + D1 * n1;
+      const double nDn = n0 * Dn0 + n1 * Dn1;
+      const bool pl = dsum > 0.0;
+      pn = pl ? pn + nDn : pn;
+      xi0 = pl ? xi0 - dbar * (Dn0 - nDn * n0) : xi0;
+      xi1 = pl ? xi1 - dbar * (Dn1 - nDn * n1) : xi1;
+    }
+    const double th2 = B.th2[p] + dt * (ob2 - oa2);
+    const double A = UNI ? A_u : pair_area(dbar, DIM);
+    const double sf = G2 * B.idbar[p];
+    const double sn = G2 * (B.eraw[p] - pn) + alpha * B.Xbar[p];
+    const double t0 = sf * xi0, t1 = sf * xi1, t2v = D3 ? sf * xi2 : 0.0;
+    const double t2 = D3 ? t0 * t0 + t1 * t1 + t2v * t2v : t0 * t0 + t1 * t1;
+    const double strength = (kind == LINK) ? s_link : s_weld;
+    const double tp = (sn > 0.0) ? sn : 0.0;    // link_breaks_sq
+    const bool brk = (kind != ATTACH) && (tp * tp + 3.0 * t2 > strength * strength);
+    const double cd = B.cd[p], cr = B.cr[p];
+    const double kr = UNI ? kr_u : rotational_stiffness(mat, A, dbar);
+    const bool linked0 = (kind == LINK) || (kind == WELD) || (kind == ATTACH);
+    B.elig[p] = (linked0 && !brk && !(cd == 0.0 && damp_on)) ? 1.0 : 0.0;
+    B.xi0n[p] = xi0;
+    B.xi1n[p] = xi1;
+    B.pnn[p] = pn;
+    B.th2n[p] = th2;
+    B.Fe0[p] = A * (sn * n0 + t0);
+    B.Fe1[p] = A * (sn * n1 + t1);
+    B.Fd0[p] = cd * vr0;
+    B.Fd1[p] = cd * vr1;
+    B.Ma2[p] = kr * th2 + cr * (ob2 - oa2);
+    if (D3) {
+      B.xi2n[p] = xi2;
+      B.th0n[p] = th0;
+      B.th1n[p] = th1;
+      B.Fe2[p] = A * (sn * n2 + t2v);
+      B.Fd2[p] = cd * vr2;
+      B.Ma0[p] = kr * th0 + cr * (B.ob0[p] - B.oa0[p]);
+      B.Ma1[p] = kr * th1 + cr * (B.ob1[p] - B.oa1[p]);
+    }
+    // (the expressions of the general path's tail, pair_loop)
+    const double Fe0 = B.Fe0[p], Fe1 = B.Fe1[p], Fe2 = D3 ? B.Fe2[p] : 0.0;
+    const double F0 = Fe0 + B.Fd0[p], F1 = Fe1 + B.Fd1[p], F2 = D3 ? Fe2 + B.Fd2[p] : 0.0;
+    const double si = (B.ia[p] != 0.0) ? 1.0 : -1.0;
+    B.F0[p] = F0;
+    B.F1[p] = F1;
+    B.nxF2[p] = n0 * F1 - n1 * F0;
+    B.L0[p] = n0 * Fe0;
+    B.L1[p] = n1 * Fe1;
+    B.L3[p] = 0.5 * (n0 * Fe1 + n1 * Fe0);
+    B.Fs0[p] = si * F0;
+    B.Fs1[p] = si * F1;
+    B.Ms2[p] = si * B.Ma2[p];
+    if (D3) {
+      B.F2[p] = F2;
+      B.nxF0[p] = n1 * F2 - n2 * F1;
+      B.nxF1[p] = n2 * F0 - n0 * F2;
+      B.L2[p] = n2 * Fe2;
+      B.L4[p] = 0.5 * (n0 * Fe2 + n2 * Fe0);
+      B.L5[p] = 0.5 * (n1 * Fe2 + n2 * Fe1);
+      B.Fs2[p] = si * F2;
+      B.Ms0[p] = si * B.Ma0[p];
+      B.Ms1[p] = si * B.Ma1[p];
+    }
+  }
 }
 
 /* ----------------------------------------------------------------------

@@ -78,13 +78,61 @@ class PairMCA : public Pair {
   double **pin;         // pair inputs of local and ghost atoms: X, pending plastic increment[6]
   int **gimg;           // periodic image (integers) of each ghost relative to its owner
   int maxxo;
-  // pass-1 geometry of the pairs of one automaton (pair_loop)
+  // pair geometry and inputs of the general path (pass 2b of pair_loop)
   struct PairPre {
-    int jj, j, proj;
+    int i, jj, j, proj;
     double R0, R1, R2, Va0, Va1, Va2, Vb0, Vb1, Vb2, rsq, r, n0, n1, n2, idbar, eraw, sc, xn;
   };
-  PairPre *pre;
-  int maxpre;
+  // A batch of pairs, one array per quantity (pair_loop: pass 1 fills it for a run of automata,
+  // pass 2a computes the common case of all its pairs in vectorised loops, pass 2b applies the
+  // pairs in order).  NBATCH pairs at most: the batch's arrays stay in the L1 cache.
+  enum { NBATCH = 24, NBCAP = NBATCH };
+  struct Batch {
+    int i[NBCAP], jj[NBCAP], j[NBCAP];
+    // pass 1: geometry
+    double R0[NBCAP], R1[NBCAP], R2[NBCAP], Va0[NBCAP], Va1[NBCAP], Va2[NBCAP], Vb0[NBCAP],
+        Vb1[NBCAP], Vb2[NBCAP], rsq[NBCAP], r[NBCAP], n0[NBCAP], n1[NBCAP], n2[NBCAP],
+        idbar[NBCAP], eraw[NBCAP], proj[NBCAP], sc[NBCAP], xn[NBCAP], hasxi[NBCAP];
+    // pass 1: state and partner inputs of the common case (kind FREE: not the common case)
+    double kind[NBCAP], pn[NBCAP], cd[NBCAP], cr[NBCAP], xi0[NBCAP], xi1[NBCAP], xi2[NBCAP],
+        rp0[NBCAP], rp1[NBCAP], rp2[NBCAP], th0[NBCAP], th1[NBCAP], th2[NBCAP], oa0[NBCAP],
+        oa1[NBCAP], oa2[NBCAP], ob0[NBCAP], ob1[NBCAP], ob2[NBCAP], Xbar[NBCAP], D0[NBCAP],
+        D1[NBCAP], D2[NBCAP], D3[NBCAP], D4[NBCAP], D5[NBCAP], ra[NBCAP], rb[NBCAP], dbar[NBCAP];
+    // pass 2a: results of the common case
+    double elig[NBCAP], xi0n[NBCAP], xi1n[NBCAP], xi2n[NBCAP], pnn[NBCAP], th0n[NBCAP],
+        th1n[NBCAP], th2n[NBCAP], Fe0[NBCAP], Fe1[NBCAP], Fe2[NBCAP], Fd0[NBCAP], Fd1[NBCAP],
+        Fd2[NBCAP], Ma0[NBCAP], Ma1[NBCAP], Ma2[NBCAP], ia[NBCAP], F0[NBCAP], F1[NBCAP],
+        F2[NBCAP], nxF0[NBCAP], nxF1[NBCAP], nxF2[NBCAP], L0[NBCAP], L1[NBCAP], L2[NBCAP],
+        L3[NBCAP], L4[NBCAP], L5[NBCAP], Fs0[NBCAP], Fs1[NBCAP], Fs2[NBCAP], Ms0[NBCAP],
+        Ms1[NBCAP], Ms2[NBCAP];
+    void get(int p, PairPre &P) const
+    {
+      P.i = i[p];
+      P.jj = jj[p];
+      P.j = j[p];
+      P.proj = proj[p] != 0.0;
+      P.R0 = R0[p];
+      P.R1 = R1[p];
+      P.R2 = R2[p];
+      P.Va0 = Va0[p];
+      P.Va1 = Va1[p];
+      P.Va2 = Va2[p];
+      P.Vb0 = Vb0[p];
+      P.Vb1 = Vb1[p];
+      P.Vb2 = Vb2[p];
+      P.rsq = rsq[p];
+      P.r = r[p];
+      P.n0 = n0[p];
+      P.n1 = n1[p];
+      P.n2 = n2[p];
+      P.idbar = idbar[p];
+      P.eraw = eraw[p];
+      P.sc = sc[p];
+      P.xn = xn[p];
+    }
+  };
+  Batch *bat;
+  int maxecount;        // the largest number of pairs of one automaton (rebuild_cache)
 
   void allocate();
   void ensure_fix();
@@ -97,6 +145,8 @@ class PairMCA : public Pair {
   int initial_link_kind(int i, tagint jtag, double rsq, double dbar, bool same_body);
   template <int DIM> void automaton_update(int i, bool advance, double iV);
   template <int DIM, bool ADV, bool UNI> void pair_loop(bool init_links, double *tally, double runi);
+  template <int DIM, bool UNI> void batch_common(int n, double runi);
+  template <int DIM, bool UNI> void batch_geometry(int n, double runi);
 };
 
 }    // namespace LAMMPS_NS
