@@ -75,6 +75,7 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   maxxo = 0;
   bat = nullptr;
   maxecount = 0;
+  batch_on = 1;
 }
 
 PairMCA::~PairMCA()
@@ -124,6 +125,10 @@ void PairMCA::settings(int narg, char **arg)
       link_tol = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (link_tol < 0.0 || link_tol > 0.2)
         error->all(FLERR, "pair_style mca: link_tol: expected 0-0.2, got {}", link_tol);
+    } else if (strcmp(arg[iarg], "batch") == 0) {
+      // (the vectorised common case of pair_loop; 'no' runs every pair on the general path,
+      // same numbers, for the test that the two agree)
+      batch_on = utils::logical(FLERR, arg[iarg + 1], false, lmp);
     } else if (strcmp(arg[iarg], "cutoff") == 0) {
       cutfac = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (cutfac < 1.05 || cutfac > 3.0)
@@ -820,12 +825,13 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   // without branches over the batch's arrays, which the compiler vectorises.  The same
   // expressions in the same order as the general path (pass 2b), so the same numbers; a pair
   // outside the common case (elig = 0) takes the general path with its state untouched
-  if (ADV && !init_links) batch_common<DIM, UNI>(npre, runi);
+  const bool common = ADV && !init_links && batch_on;
+  if (common) batch_common<DIM, UNI>(npre, runi);
 
   // pass 2b: the law, pair by pair, in the order of the pairs (so that the sums into forces,
   // torques and stresses are formed in the same order as without batches)
   for (int ip = 0; ip < npre; ip++) {
-      if (ADV && !init_links && B.elig[ip]) {
+      if (common && B.elig[ip]) {
         // the common case (pass 2a): write the advanced state back, apply the forces
         const int i = B.i[ip], jj = B.jj[ip], j = B.j[ip];
         const bigint e = cacheoff[i] + jj;

@@ -10,6 +10,7 @@
 
    Syntax:
      pair_style mca [link_init same|all|none|bonds] [link_tol X] [attach_type N] [cutoff F]
+                    [batch yes|no]
      pair_coeff * * G nu sigma_y sigma_0 H mu eta weld_factor weld_onset damp
 ------------------------------------------------------------------------- */
 
@@ -133,6 +134,7 @@ class PairMCA : public Pair {
   };
   Batch *bat;
   int maxecount;        // the largest number of pairs of one automaton (rebuild_cache)
+  int batch_on;         // 1: pass 2a computes the common case (pair_style keyword batch)
 
   void allocate();
   void ensure_fix();
