@@ -74,6 +74,7 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   gimg = nullptr;
   maxxo = 0;
   bat = nullptr;
+  abat = nullptr;
   maxecount = 0;
   batch_on = 1;
 }
@@ -92,6 +93,7 @@ PairMCA::~PairMCA()
   memory->destroy(pin);
   memory->destroy(gimg);
   delete bat;
+  delete abat;
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -505,14 +507,17 @@ void PairMCA::compute(int eflag, int vflag)
   // the committed step used half-step ones (velocity Verlet), so damping and viscosity would
   // differ by one step
   double cf = 0.0, cb = 0.0, lb = 0.0, wf = 0.0;
+  if (!abat) abat = new AutomBatch();
   const bool restore = !advance && fix->last_commit >= 0.0;
-  double *radius = atom->radius;
   // (the stress is the Love-Weber sum times 1/V)
   const double iVuni = (runi > 0.0) ? 1.0 / automaton_volume(2.0 * runi, dim) : 0.0;
+  // (in batches of automata: the stress update of a batch in vectorised loops, automata_update)
   for (int i = 0; i < nlocal; i++) {
-    const double iV = (runi > 0.0) ? iVuni : 1.0 / automaton_volume(2.0 * radius[i], dim);
-    if (dim == 2) automaton_update<2>(i, advance, iV);
-    else automaton_update<3>(i, advance, iV);
+    if (i % NABATCH == 0) {
+      const int na = (nlocal - i < NABATCH) ? nlocal - i : NABATCH;
+      if (dim == 2) automata_update<2>(i, na, advance, iVuni);
+      else automata_update<3>(i, na, advance, iVuni);
+    }
     double *am = autom[i];
     cf += am[FS::A_CF];
     cb += am[FS::A_CB];
@@ -1327,45 +1332,100 @@ template <int DIM, bool UNI> void PairMCA::batch_common(int n, double runi)
    Hooke's law with plastic strain).
 ------------------------------------------------------------------------- */
 
-template <int DIM> void PairMCA::automaton_update(int i, bool advance, double iV)
+template <int DIM> void PairMCA::automata_update(int i0, int na, bool advance, double iVuni)
 {
   // (rows of contiguous per-atom arrays)
-  double *am = fix->autom[0] + (bigint) i * FS::NAUTO;
-  const double *acc = sacc[0] + 8 * (bigint) i;
-  double sig[6];
-  double X;
-  if (DIM == 2) {
-    sig[0] = acc[0] * iV;
-    sig[1] = acc[1] * iV;
-    sig[3] = acc[3] * iV;
-    sig[4] = sig[5] = 0.0;
-    X = 0.5 * (sig[0] + sig[1]) - mat.G * am[FS::A_EPT + 2];
-    sig[2] = mat.alpha * X - 2.0 * mat.G * am[FS::A_EPT + 2];
-  } else {
-    for (int c = 0; c < 6; c++) sig[c] = acc[c] * iV;
-    X = (sig[0] + sig[1] + sig[2]) / 3.0;
+  double *autom0 = fix->autom[0], *out0 = fix->out[0];
+  const double *sacc_ = sacc[0];
+  const double *radius = atom->radius;
+  AutomBatch &A = *abat;
+  for (int q = 0; q < na; q++) {
+    const int i = i0 + q;
+    const double *acc = sacc_ + 8 * (bigint) i;
+    const double *am = autom0 + (bigint) i * FS::NAUTO;
+    const double iV = (iVuni > 0.0) ? iVuni : 1.0 / automaton_volume(2.0 * radius[i], DIM);
+    for (int c = 0; c < 6; c++) A.acc[c][q] = acc[c];
+    A.iV[q] = iV;
+    A.ept2[q] = am[FS::A_EPT + 2];
+    A.ep[q] = am[FS::A_EEQ];
   }
-  double dep[6], seq;
-  const double dg = radial_return(mat, sig, am[FS::A_EEQ], dep, seq);
-  if (advance) {
-    for (int c = 0; c < 6; c++) {
-      am[FS::A_DEP + c] = dep[c];
-      am[FS::A_EPT + c] += dep[c];
+  // the stress (rule 7 in mca_law.h: radial_return, as selects; the same expressions)
+  const double G = mat.G, alpha = mat.alpha, H = mat.H, sy0 = mat.sy, s0 = mat.s0;
+  const double inv_3GH = mat.inv_3GH, inv_3G = mat.inv_3G;
+  for (int q = 0; q < na; q++) {
+    const double iV = A.iV[q];
+    double sig0, sig1, sig2, sig3, sig4, sig5, X;
+    if (DIM == 2) {
+      sig0 = A.acc[0][q] * iV;
+      sig1 = A.acc[1][q] * iV;
+      sig3 = A.acc[3][q] * iV;
+      sig4 = sig5 = 0.0;
+      X = 0.5 * (sig0 + sig1) - G * A.ept2[q];
+      sig2 = alpha * X - 2.0 * G * A.ept2[q];
+    } else {
+      sig0 = A.acc[0][q] * iV;
+      sig1 = A.acc[1][q] * iV;
+      sig2 = A.acc[2][q] * iV;
+      sig3 = A.acc[3][q] * iV;
+      sig4 = A.acc[4][q] * iV;
+      sig5 = A.acc[5][q] * iV;
+      X = (sig0 + sig1 + sig2) / 3.0;
     }
-    am[FS::A_EEQ] += dg;
-    am[FS::A_XU] = am[FS::A_X];
-    am[FS::A_X] = X;
+    const double ep = A.ep[q];
+    const double p = (sig0 + sig1 + sig2) / 3.0;    // von_mises
+    const double d0 = sig0 - p, d1 = sig1 - p, d2 = sig2 - p;
+    const double s_eq =
+        std::sqrt(1.5 * (d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * (sig3 * sig3 + sig4 * sig4 + sig5 * sig5)));
+    const double ys = sy0 + H * ep;    // yield_stress
+    const double sy = (ys < s0) ? ys : s0;
+    const bool elastic = (s_eq <= sy) | (s_eq <= 0.0);
+    double dg = (s_eq - sy) * inv_3GH;
+    const double ys1 = sy0 + H * (ep + dg);
+    dg = (((ys1 < s0) ? ys1 : s0) >= s0) ? (s_eq - s0) * inv_3G : dg;
+    dg = (dg < 0.0) ? 0.0 : dg;
+    const double is = 1.0 / s_eq;    // (elastic lanes may divide by zero: not selected)
+    const double f = 1.0 - 3.0 * G * dg * is;
+    const double c = 1.5 * dg * is;
+    A.dg[q] = elastic ? 0.0 : dg;
+    A.X[q] = X;
+    A.seq[q] = elastic ? s_eq : f * s_eq;
+    A.dep[0][q] = elastic ? 0.0 : c * d0;
+    A.dep[1][q] = elastic ? 0.0 : c * d1;
+    A.dep[2][q] = elastic ? 0.0 : c * d2;
+    A.dep[3][q] = elastic ? 0.0 : c * sig3;
+    A.dep[4][q] = elastic ? 0.0 : c * sig4;
+    A.dep[5][q] = elastic ? 0.0 : c * sig5;
+    A.sig[0][q] = elastic ? sig0 : f * d0 + p;
+    A.sig[1][q] = elastic ? sig1 : f * d1 + p;
+    A.sig[2][q] = elastic ? sig2 : f * d2 + p;
+    A.sig[3][q] = elastic ? sig3 : f * sig3 + 0.0;
+    A.sig[4][q] = elastic ? sig4 : f * sig4 + 0.0;
+    A.sig[5][q] = elastic ? sig5 : f * sig5 + 0.0;
   }
-  for (int c = 0; c < 6; c++) am[FS::A_SIG + c] = sig[c];
-  am[FS::A_NL] = acc[6];
-  am[FS::A_NC] = acc[7];
-  am[FS::A_SEQ] = seq;
-  double *o = fix->out[0] + (bigint) i * FS::NOUT;
-  for (int c = 0; c < 6; c++) o[c] = sig[c];
-  o[6] = am[FS::A_EEQ];
-  o[7] = acc[6];
-  o[8] = acc[7];
-  o[9] = seq;
+  for (int q = 0; q < na; q++) {
+    const int i = i0 + q;
+    double *am = autom0 + (bigint) i * FS::NAUTO;
+    const double *acc = sacc_ + 8 * (bigint) i;
+    if (advance) {
+      for (int c = 0; c < 6; c++) {
+        am[FS::A_DEP + c] = A.dep[c][q];
+        am[FS::A_EPT + c] += A.dep[c][q];
+      }
+      am[FS::A_EEQ] += A.dg[q];
+      am[FS::A_XU] = am[FS::A_X];
+      am[FS::A_X] = A.X[q];
+    }
+    for (int c = 0; c < 6; c++) am[FS::A_SIG + c] = A.sig[c][q];
+    am[FS::A_NL] = acc[6];
+    am[FS::A_NC] = acc[7];
+    am[FS::A_SEQ] = A.seq[q];
+    double *o = out0 + (bigint) i * FS::NOUT;
+    for (int c = 0; c < 6; c++) o[c] = A.sig[c][q];
+    o[6] = am[FS::A_EEQ];
+    o[7] = acc[6];
+    o[8] = acc[7];
+    o[9] = A.seq[q];
+  }
 }
 
 /* ---------------------------------------------------------------------- */

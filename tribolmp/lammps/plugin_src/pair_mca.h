@@ -133,6 +133,13 @@ class PairMCA : public Pair {
     }
   };
   Batch *bat;
+  // a batch of automata for the stress update (automata_update): inputs and results by component
+  enum { NABATCH = 32 };
+  struct AutomBatch {
+    double acc[6][NABATCH], iV[NABATCH], ept2[NABATCH], ep[NABATCH], X[NABATCH], dg[NABATCH],
+        seq[NABATCH], dep[6][NABATCH], sig[6][NABATCH];
+  };
+  AutomBatch *abat;
   int maxecount;        // the largest number of pairs of one automaton (rebuild_cache)
   int batch_on;         // 1: pass 2a computes the common case (pair_style keyword batch)
 
@@ -145,7 +152,7 @@ class PairMCA : public Pair {
   int find_slot(int i, double jtag);
   int new_slot(int i, double jtag);
   int initial_link_kind(int i, tagint jtag, double rsq, double dbar, bool same_body);
-  template <int DIM> void automaton_update(int i, bool advance, double iV);
+  template <int DIM> void automata_update(int i0, int na, bool advance, double iVuni);
   template <int DIM, bool ADV, bool UNI> void pair_loop(bool init_links, double *tally, double runi);
   template <int DIM, bool UNI> void batch_common(int n, double runi);
   template <int DIM, bool UNI> void batch_geometry(int n, double runi);
