@@ -758,6 +758,9 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       B.i[ip] = i;
       B.ia[ip] = i_is_a ? 1.0 : 0.0;
       B.jj[ip] = jj;
+      B.e[ip] = eoff + jj;
+      B.ef[ip] = ef;
+      B.soff[ip] = (bigint) i * slotrow + k1 * FS::NSLOT;
       B.j[ip] = j;
       B.R0[ip] = R0;
       B.R1[ip] = R1;
@@ -838,11 +841,12 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   for (int ip = 0; ip < npre; ip++) {
       if (common && B.elig[ip]) {
         // the common case (pass 2a): write the advanced state back, apply the forces
-        const int i = B.i[ip], jj = B.jj[ip], j = B.j[ip];
-        const bigint e = cacheoff[i] + jj;
-        const int ef = eflag[e];
+        // (entry, flags and slot offset from pass 1: no chain of dependent loads here)
+        const int i = B.i[ip], j = B.j[ip];
+        const bigint e = B.e[ip];
+        const int ef = B.ef[ip];
         const bool jlocal = ef & E_LOCAL;
-        double *s = slots + (bigint) i * slotrow + cacheflat[e] * FS::NSLOT;
+        double *s = slots + B.soff[ip];
         if (jlocal && mirrorflat[e] < 0) {
           // (as in the general path below)
           const int kj = find_slot(j, (double) tag[i]);

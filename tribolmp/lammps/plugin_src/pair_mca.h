@@ -89,7 +89,8 @@ class PairMCA : public Pair {
   // pairs in order).  NBATCH pairs at most: the batch's arrays stay in the L1 cache.
   enum { NBATCH = 24, NBCAP = NBATCH };
   struct Batch {
-    int i[NBCAP], jj[NBCAP], j[NBCAP];
+    int i[NBCAP], jj[NBCAP], j[NBCAP], ef[NBCAP];
+    bigint e[NBCAP], soff[NBCAP];    // entry of the evaluation lists, offset of i's slot (k >= 0)
     // pass 1: geometry
     double R0[NBCAP], R1[NBCAP], R2[NBCAP], Va0[NBCAP], Va1[NBCAP], Va2[NBCAP], Vb0[NBCAP],
         Vb1[NBCAP], Vb2[NBCAP], rsq[NBCAP], r[NBCAP], n0[NBCAP], n1[NBCAP], n2[NBCAP],
