@@ -14,33 +14,13 @@ one path and not in the other fails it.
 
 from __future__ import annotations
 
-import json
-import subprocess
-import sys
-import textwrap
-
 import numpy as np
 import pytest
 
-from tribolmp.lammps.decks import deck_path
+from tests.mca.helpers import run_block
 from tribolmp.lammps.material_test import block_setup
 
 pytestmark = pytest.mark.lammps
-
-_SCRIPT = textwrap.dedent(
-    """
-    import json, sys
-    import numpy as np
-    from tribolmp.lammps.session import LammpsSession
-    v = json.loads(sys.argv[1]); deck = sys.argv[2]; out = sys.argv[3]
-    with LammpsSession(log=None, variables=v, require=()) as s:
-        s.file(deck)
-        g = {k: np.ctypeslib.as_array(s.lmp.gather_atoms(k, 1, 3)).reshape(-1, 3).copy()
-             for k in ("x", "v", "omega")}
-        t = [s.lmp.extract_compute("t", 0, 1)[k] for k in range(7)]
-        np.savez(out, tallies=np.array(t), **g)
-    """
-)
 
 
 def _perturb_diameters(data, rng: np.random.Generator, spread: float) -> None:
@@ -64,12 +44,7 @@ def _run(tmp_path, name, dim, n, batch, spread):
     if spread:
         _perturb_diameters(tmp_path / name / "block.data", np.random.default_rng(7), spread)
     v.update(vshear=100.0, steps=600, print_every=600, mca_batch=batch)
-    v = {k: str(val) for k, val in v.items()}
-    out = tmp_path / f"{name}.npz"
-    cmd = [sys.executable, "-c", _SCRIPT, json.dumps(v), str(deck_path("mca_block")), str(out)]
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
-    assert proc.returncode == 0, proc.stderr[-2000:]
-    return np.load(out)
+    return run_block(v, tmp_path / f"{name}.npz")
 
 
 @pytest.mark.parametrize(

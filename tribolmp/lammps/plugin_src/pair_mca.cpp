@@ -557,6 +557,25 @@ void PairMCA::compute(int eflag, int vflag)
    (terms that are +-0 do not change a sum), with a third of the work.
    Small vectors are kept in scalars, not arrays, so that the compiler keeps
    them in registers.
+
+   The pairs are evaluated in batches of NBATCH, in the order of the
+   evaluation lists (rebuild_cache):
+     pass 1a  gathers each pair's geometry, state and partner inputs into the
+              batch's arrays (one array per quantity);
+     pass 1b  distance, normal, raw strain and tangential rescaling of the
+              whole batch (batch_geometry, vectorised: square roots and
+              divisions of many pairs at once);
+     pass 2a  the common case of the whole batch -- an existing link, weld or
+              attachment advanced by one step that does not break -- in
+              vectorised loops (batch_common);
+     pass 2b  pair by pair in order: the common case writes its state back and
+              applies its forces; every other pair (contacts, new links,
+              ruptures, welds, the first step, re-evaluations) runs the general
+              path below from its untouched state.
+   Both paths are the same expressions in the same order, and the sums into
+   forces, torques and stresses are formed pair by pair in the same order, so
+   batching changes no number (tests/mca/test_law_batch.py: 'pair_style mca
+   batch no' runs every pair on the general path).
 ------------------------------------------------------------------------- */
 
 template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, double *tally, double runi)
@@ -685,10 +704,9 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       for (int b = 0; b < npf; b += 8) __builtin_prefetch(nxt + b);
     }
 
-    // pass 1: the geometry of every pair of i that is evaluated (square root, reciprocal and
-    // the tangential rescaling's division for all pairs first, so that their latencies
-    // overlap instead of lying on each pair's chain of dependent operations; the same
-    // expressions on the same inputs as in pass 2's place, so the same numbers)
+    // pass 1a: the relative position and velocities of every pair of i that is evaluated
+    // (a pair with no state that does not touch is left out), its state and its partners'
+    // inputs, into the batch
     int jj = jj0;
     for (; jj < jnum && npre < NBATCH; jj++) {
       const int j = ej_i[jj];
@@ -1502,5 +1520,6 @@ void PairMCA::read_restart(FILE *fp)
 
 double PairMCA::memory_usage()
 {
-  return (double) maxflat * sizeof(int) + (double) maxsacc * 8 * sizeof(double);
+  return (double) maxflat * (4 * sizeof(int)) + (double) maxsacc * 8 * sizeof(double) +
+      (bat ? sizeof(Batch) : 0) + (abat ? sizeof(AutomBatch) : 0);
 }
