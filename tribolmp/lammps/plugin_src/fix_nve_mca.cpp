@@ -60,34 +60,11 @@ void FixNVEMCA::reset_dt()
 // (dtf / inertia) / (r^2 m): the operations of nve/bpm/sphere, so that a run with this fix
 // reproduces one with nve/bpm/sphere bit for bit)
 
-void FixNVEMCA::initial_integrate(int /*vflag*/)
+// half a step of velocity and angular velocity from force and torque (the two half-kicks of
+// velocity Verlet); move: also the drift of the position with the new velocity
+template <bool MOVE> void FixNVEMCA::kick()
 {
   double **x = atom->x, **v = atom->v, **f = atom->f;
-  double **omega = atom->omega, **torque = atom->torque;
-  double *radius = atom->radius, *rmass = atom->rmass;
-  int *mask = atom->mask;
-  int nlocal = atom->nlocal;
-  if (igroup == atom->firstgroup) nlocal = atom->nfirst;
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    const double dtfm = dtf / rmass[i];
-    double *vi = v[i], *xi = x[i], *fi = f[i], *wi = omega[i], *ti = torque[i];
-    vi[0] += dtfm * fi[0];
-    vi[1] += dtfm * fi[1];
-    vi[2] += dtfm * fi[2];
-    xi[0] += dtv * vi[0];
-    xi[1] += dtv * vi[1];
-    xi[2] += dtv * vi[2];
-    const double dtirotate = dtf / (inertia * (radius[i] * radius[i] * rmass[i]));
-    wi[0] += dtirotate * ti[0];
-    wi[1] += dtirotate * ti[1];
-    wi[2] += dtirotate * ti[2];
-  }
-}
-
-void FixNVEMCA::final_integrate()
-{
-  double **v = atom->v, **f = atom->f;
   double **omega = atom->omega, **torque = atom->torque;
   double *radius = atom->radius, *rmass = atom->rmass;
   int *mask = atom->mask;
@@ -100,9 +77,25 @@ void FixNVEMCA::final_integrate()
     vi[0] += dtfm * fi[0];
     vi[1] += dtfm * fi[1];
     vi[2] += dtfm * fi[2];
+    if (MOVE) {
+      double *xi = x[i];
+      xi[0] += dtv * vi[0];
+      xi[1] += dtv * vi[1];
+      xi[2] += dtv * vi[2];
+    }
     const double dtirotate = dtf / (inertia * (radius[i] * radius[i] * rmass[i]));
     wi[0] += dtirotate * ti[0];
     wi[1] += dtirotate * ti[1];
     wi[2] += dtirotate * ti[2];
   }
+}
+
+void FixNVEMCA::initial_integrate(int /*vflag*/)
+{
+  kick<true>();
+}
+
+void FixNVEMCA::final_integrate()
+{
+  kick<false>();
 }

@@ -41,6 +41,7 @@ class FixNVEMCA : public Fix {
  private:
   double inertia;    // moment of inertia / (m r^2)
   double dtv, dtf;
+  template <bool MOVE> void kick();
 };
 
 }    // namespace LAMMPS_NS
