@@ -611,6 +611,13 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
 
   int *ilist = list->ilist;
   bool any_mirror = false;
+  // Virial: per-atom tallies (ev_tally_xyz_full, which also forms the global sums) only when
+  // per-atom energy or virial is asked for; the global virial alone is summed inline.  A
+  // 'fix ave/time 1 N N' of any compute makes LAMMPS ask for the global virial on every step
+  // (the friction deck's), where the per-atom path's function calls cost a fifth of the loop
+  const bool peratom = evflag && (eflag_atom || vflag_atom);
+  const bool vglobal = vflag_global && !peratom;
+  double vir[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 
   // the batch of pairs (pass 1 fills it for a run of automata, pass 2a computes the common
   // case of all of them at once, pass 2b applies them in order)
@@ -660,7 +667,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         acc[4] += rq * Lv[4];
         acc[5] += rq * Lv[5];
       }
-      if (evflag) {
+      if (peratom) {
         const double si = i_is_a ? 1.0 : -1.0;
         const double sq = plus ? si : -si;
         ev_tally_xyz_full(q, 0.0, 0.0, sq * Fv[0], sq * Fv[1], sq * Fv[2], delx, dely, delz);
@@ -671,6 +678,21 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       }
     };
     apply(i, true, -dx, -dy, -dz);
+    if (vglobal) {
+      // the global virial of the pair, -R (x) F_a: ev_tally_xyz_full's two halves (one per
+      // automaton, 0.5 del_q (x) F_q each) summed here, or its one half when j is a ghost
+      // (its owner tallies the other)
+      const double w = jlocal ? -1.0 : -0.5;
+      const double F0 = w * Fv[0], F1 = w * Fv[1], F2 = D3 ? w * Fv[2] : 0.0;
+      vir[0] += R0 * F0;
+      vir[1] += R1 * F1;
+      vir[3] += R0 * F1;
+      if (D3) {
+        vir[2] += R2 * F2;
+        vir[4] += R0 * F2;
+        vir[5] += R1 * F2;
+      }
+    }
     if (jlocal) {
       apply(j, false, dx, dy, dz);
       // j's copy of the state: written when it is next read (sync_mirrors)
@@ -1163,6 +1185,8 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   }
   }
   if (any_mirror) mirrors_pending = 1;
+  if (vglobal)
+    for (int c = 0; c < 6; c++) virial[c] += vir[c];
   tally[0] = tally_links;
   tally[1] = tally_cross;
   tally[2] = tally_contacts;
