@@ -41,7 +41,13 @@ cache folder), timed in the same run, so that a before/after ratio shares the ma
 its own integrator (``fix nve/bpm/sphere``, ghost cutoff 3 d, ``newton on``), which a plugin
 older than ``fix nve/mca`` needs; ``current`` (default) with today's.
 
+``--friction``: the same two laws (and the reference build, if given) on the friction deck's
+system of the ``default`` preset (2D and 3D: slider, two rough bodies, base), prepared as
+``tribolmp mca run`` prepares it and run from the built state; CSV
+``mca_throughput_friction.csv``.
+
 Usage: ``python benchmarks/mca_throughput.py [--quick] [--out CSV]`` (laws),
+``python benchmarks/mca_throughput.py --friction [--reference-plugin SO]``,
 ``python benchmarks/mca_throughput.py --interfaces [--quick]``.
 """
 
@@ -282,12 +288,103 @@ def laws_main(
     return 0
 
 
+#: (dim, preset) of the friction comparison: the default preset's friction system
+FRICTION_SYSTEMS = ((2, "default"), (3, "default"))
+FRICTION_SYSTEMS_QUICK = ((2, "smoke"), (3, "smoke"))
+
+
+def friction_main(
+    quick: bool,
+    csv_path: Path,
+    loop_s: float,
+    reference: str | None = None,
+    reference_label: str = "reference",
+) -> int:
+    """Mca vs bpm/spring/plastic on the friction deck's system; print and write the CSV.
+
+    The system of a preset (rigid slider, two rough bodies, fixed base; ``mca_friction.in``
+    with ``drive deck``: the slider presses and slides from the built state) is prepared once
+    per law, as ``tribolmp mca run`` would, and run for a loop of about ``loop_s`` of LAMMPS
+    time (calibrated by a short first run) on 1 rank.  Unlike the block, this deck asks for the
+    global virial on every step (its ``fix ave/time 1 N N``), and its bodies are bounded by
+    free surfaces and rigid layers.
+    """
+    from tribolmp.lammps import mca
+    from tribolmp.lammps.mca.prepare import prepare as mca_prepare
+
+    laws = ["bpm/spring/plastic", "mca"] + (["mca@" + reference_label] if reference else [])
+    rows = []
+    print(
+        f"{'dim':>3} {'preset':>7} {'law':>20} {'automata':>8} {'steps':>6} {'loop_s':>7} "
+        f"{'automaton-steps/s':>17} {'ratio':>6} {'load':>5}"
+    )
+    with tempfile.TemporaryDirectory(prefix="mca_friction_") as tmp:
+        for dim, preset in FRICTION_SYSTEMS_QUICK if quick else FRICTION_SYSTEMS:
+            res = {}
+            for law in laws:
+                params = mca.preset_params(
+                    preset,
+                    dim=dim,
+                    bond_style=law.split("@")[0],
+                    dump_interval=1e-6,
+                    restart_interval=1e-6,
+                )
+                prep = Path(tmp) / f"{dim}d_{re.sub(r'[/@+]', '_', law)}"
+                variables = {k: str(v) for k, v in mca_prepare(params, prep, 1, {}).items()}
+                if "@" in law:
+                    variables["mca_plugin"] = str(Path(reference).resolve())
+
+                def timed(steps: int, name: str) -> dict:
+                    v = dict(
+                        variables,
+                        drive="deck",
+                        steps=str(steps),
+                        thermo_every=str(steps),
+                        restart_every=str(10 * steps),
+                    )
+                    return _run("python-1", v, prep / name)
+
+                cal = timed(300, "cal")
+                steps = max(400, int(loop_s * cal["rate"] / cal["atoms"]))
+                res[law] = timed(steps, "run")
+            for law, r in res.items():
+                ratio = r["rate"] / res["bpm/spring/plastic"]["rate"]
+                rows.append(
+                    {
+                        "dim": dim,
+                        "preset": preset,
+                        "law": law.split("@")[0],
+                        "plugin": (law.split("@", 1)[1] if "@" in law else "current")
+                        if law.startswith("mca")
+                        else "",
+                        "automata": r["atoms"],
+                        "steps": r["steps"],
+                        "loop_s": r["loop_s"],
+                        "automaton_steps_per_s": r["rate"],
+                        "ratio_vs_bpm": ratio,
+                        "load_avg_1min": r["load"],
+                    }
+                )
+                print(
+                    f"{dim:>3} {preset:>7} {law:>20} {r['atoms']:>8} {r['steps']:>6} "
+                    f"{r['loop_s']:>7.1f} {r['rate']:>17.4g} {ratio:>6.2f} {r['load']:>5.1f}"
+                )
+    write_csv(csv_path, rows)
+    print(f"wrote {csv_path}")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the benchmark; print the table and write the CSV."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="small systems, short loops")
     ap.add_argument(
         "--interfaces", action="store_true", help="Python vs lmp vs 2 ranks (friction deck)"
+    )
+    ap.add_argument(
+        "--friction",
+        action="store_true",
+        help="mca vs bpm/spring/plastic on the friction deck's default-preset system",
     )
     ap.add_argument("--loop", type=float, default=12.0, help="target loop time per law run (s)")
     ap.add_argument(
@@ -319,6 +416,16 @@ def main(argv: list[str] | None = None) -> int:
         return _worker(args.worker)
     if args.block_worker:
         return _block_worker(args.block_worker)
+    if args.friction:
+        name = f"mca_throughput_friction{'_quick' if args.quick else ''}.csv"
+        csv_path = Path(args.out) if args.out else Path(__file__).parent / "results" / name
+        return friction_main(
+            args.quick,
+            csv_path,
+            2.0 if args.quick else args.loop,
+            args.reference_plugin,
+            args.reference_label,
+        )
     if not args.interfaces:
         name = f"mca_throughput_laws{'_quick' if args.quick else ''}.csv"
         csv_path = Path(args.out) if args.out else Path(__file__).parent / "results" / name
