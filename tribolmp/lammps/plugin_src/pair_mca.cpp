@@ -77,6 +77,9 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   abat = nullptr;
   maxecount = 0;
   batch_on = 1;
+  prune_on = 1;
+  sperm = nullptr;
+  maxsperm = 0;
 }
 
 PairMCA::~PairMCA()
@@ -92,6 +95,7 @@ PairMCA::~PairMCA()
   memory->destroy(xo);
   memory->destroy(pin);
   memory->destroy(gimg);
+  memory->destroy(sperm);
   delete bat;
   delete abat;
   if (allocated) {
@@ -131,6 +135,10 @@ void PairMCA::settings(int narg, char **arg)
       // (the vectorised common case of pair_loop; 'no' runs every pair on the general path,
       // same numbers, for the test that the two agree)
       batch_on = utils::logical(FLERR, arg[iarg + 1], false, lmp);
+    } else if (strcmp(arg[iarg], "prune") == 0) {
+      // (rebuild_cache leaves out pairs without state beyond contact plus skin; 'no' keeps
+      // every neighbour, same numbers, for the test that pruning loses no contact)
+      prune_on = utils::logical(FLERR, arg[iarg + 1], false, lmp);
     } else if (strcmp(arg[iarg], "cutoff") == 0) {
       cutfac = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (cutfac < 1.05 || cutfac > 3.0)
@@ -291,6 +299,21 @@ void PairMCA::rebuild_cache()
   }
   const int mp = fix->maxpartner;
   int *seen = new int[mp];
+  // Pruned lists: a pair without state is left out when it is farther apart than its contact
+  // distance plus the skin.  Safe only when LAMMPS rebuilds the lists as soon as any automaton
+  // (or, with a changing box, the box corners plus an automaton) has moved half the skin
+  // (check yes, every 1, delay 0): between two rebuilds a pair's distance then changes by at
+  // most the skin, so a pruned pair cannot touch before the next rebuild.  The relative margin
+  // 1e-9 covers the rounding of a ghost's coordinates (owner + box vector) against the owner
+  // rank's.  Not on the first step when initial links are made (link_tol reaches beyond
+  // contact).  The neighbour cutoff (cutfac x diameter + skin) still bounds where a linked or
+  // welded pair is seen; pruning drops, e.g., the second FCC shell at sqrt(2) d, a third of
+  // the pairs a 3D lattice evaluates.
+  const bool prune = prune_on && neighbor->dist_check && neighbor->every == 1 &&
+      neighbor->delay == 0 && !neighbor->build_once && !(link_init && !fix->initialized);
+  double **x = atom->x;
+  const double *radius = atom->radius;
+  const double skin = neighbor->skin;
   bigint off = 0;
   for (int i = 0; i < nlocal; i++) {
     cacheoff[i] = -1;
@@ -319,14 +342,22 @@ void PairMCA::rebuild_cache()
       if (jtag == itag) continue;
       const bool jlocal = j < nlocal;
       if (jlocal && jtag < itag) continue;
+      // local partner: its slot for this automaton
+      const int kj = jlocal ? find_slot(j, itag) : -1;
+      if (prune && k < 0 && kj < 0) {
+        // no state on either side: the pair matters only if it can touch before the next
+        // rebuild, and by then its distance has changed by at most the skin
+        const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
+        const double lim = (radius[i] + radius[j] + skin) * (1.0 + 1e-9);
+        if (dx * dx + dy * dy + dz * dz >= lim * lim) continue;
+      }
       const int *jimg = gimg[j];
       const int e = off + ne++;
       ej[e] = j;
       eflag[e] = (itag < jtag ? E_IA : 0) | (jlocal ? E_LOCAL : 0) |
           ((jimg[0] | jimg[1] | jimg[2]) != 0 ? E_IMAGE : 0) | ((!mol || mol[i] == mol[j]) ? E_SAME : 0);
       cacheflat[e] = k;
-      // local partner: its slot for this automaton
-      mirrorflat[e] = jlocal ? find_slot(j, itag) : -1;
+      mirrorflat[e] = kj;
     }
     ecount[i] = ne;
     off += ne;
@@ -343,6 +374,65 @@ void PairMCA::rebuild_cache()
   delete[] seen;
   ncached = nlocal;
   mirrors_pending = 0;
+  order_slots();
+}
+
+/* Each automaton's slots in the order its evaluation list reads them, the slots of the pairs it
+   evaluates first, then those it holds as the partner's copy (mirrors), then the free ones.
+   The pair loop then reads one contiguous run of each automaton's row per step instead of
+   slots scattered over the whole row (the 3D pair state exceeds the caches: 20 slots of 112
+   bytes per automaton), and the prefetch of the next automaton covers just that run.  Only
+   the slot indices change: the sums are formed in the order of the evaluation lists, and a
+   slot is found by its partner's tag, so no number changes (tests/mca/test_law_batch.py,
+   test_law_parallel.py).  Called at the end of rebuild_cache, when the mirror copies are
+   current (sync_mirrors ran before) and the lists hold every slot index in use. */
+
+void PairMCA::order_slots()
+{
+  const int mp = fix->maxpartner, nlocal = atom->nlocal;
+  if ((bigint) nlocal * mp > maxsperm) {
+    maxsperm = (bigint) atom->nmax * mp;
+    memory->destroy(sperm);
+    memory->create(sperm, maxsperm, "pair:mca:sperm");
+  }
+  double *tmp = new double[mp * FS::NSLOT];
+  for (int i = 0; i < nlocal; i++) {
+    int *perm = sperm + (bigint) i * mp;    // old slot index -> new
+    for (int k = 0; k < mp; k++) perm[k] = -1;
+    int nk = 0;
+    const bigint eoff = cacheoff[i];
+    const int ne = (eoff >= 0) ? ecount[i] : 0;
+    for (int e = 0; e < ne; e++) {
+      const int k = cacheflat[eoff + e];
+      if (k >= 0 && perm[k] < 0) perm[k] = nk++;
+    }
+    double *row = fix->slots[i];
+    for (int k = 0; k < mp; k++)
+      if (perm[k] < 0 && row[k * FS::NSLOT + FS::S_TAG] != 0.0) perm[k] = nk++;
+    bool same = true;
+    for (int k = 0; k < mp; k++) {
+      if (perm[k] < 0) perm[k] = nk++;
+      same = same && perm[k] == k;
+    }
+    if (same) continue;
+    memcpy(tmp, row, sizeof(double) * mp * FS::NSLOT);
+    for (int k = 0; k < mp; k++)
+      memcpy(row + perm[k] * FS::NSLOT, tmp + k * FS::NSLOT, sizeof(double) * FS::NSLOT);
+    for (int e = 0; e < ne; e++) {
+      int &k = cacheflat[eoff + e];
+      if (k >= 0) k = perm[k];
+    }
+  }
+  delete[] tmp;
+  // the partners' slot indices of local pairs, into the partners' new order
+  for (int i = 0; i < nlocal; i++) {
+    const bigint eoff = cacheoff[i];
+    if (eoff < 0) continue;
+    for (int e = 0; e < ecount[i]; e++) {
+      int &kj = mirrorflat[eoff + e];
+      if (kj >= 0) kj = sperm[(bigint) ej[eoff + e] * mp + kj];
+    }
+  }
 }
 
 /* pending mirror copies (fix_mca_state.h): a pair of two local automata is evaluated on the
@@ -722,7 +812,9 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       // the slots of the next automaton (the loop over automata is the memory stream that
       // the hardware prefetcher does not see: rows are maxpartner slots apart)
       const double *nxt = slots + (bigint) ilist[ii + 1] * slotrow;
-      const int npf = ((D3 ? 12 : 6) < fix->maxpartner ? (D3 ? 12 : 6) : fix->maxpartner) * FS::NSLOT;
+      // (order_slots: the slots it reads are the first ones of its row, at most one per pair)
+      const int nnx = ecount[ilist[ii + 1]];
+      const int npf = (nnx < fix->maxpartner ? nnx : fix->maxpartner) * FS::NSLOT;
       for (int b = 0; b < npf; b += 8) __builtin_prefetch(nxt + b);
     }
 

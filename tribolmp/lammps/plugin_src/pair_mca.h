@@ -10,7 +10,7 @@
 
    Syntax:
      pair_style mca [link_init same|all|none|bonds] [link_tol X] [attach_type N] [cutoff F]
-                    [batch yes|no]
+                    [batch yes|no] [prune yes|no]
      pair_coeff * * G nu sigma_y sigma_0 H mu eta weld_factor weld_onset damp
 ------------------------------------------------------------------------- */
 
@@ -143,10 +143,14 @@ class PairMCA : public Pair {
   AutomBatch *abat;
   int maxecount;        // the largest number of pairs of one automaton (rebuild_cache)
   int batch_on;         // 1: pass 2a computes the common case (pair_style keyword batch)
+  int prune_on;         // 1: the evaluation lists leave out pairs that cannot touch (prune)
 
   void allocate();
   void ensure_fix();
   void rebuild_cache();
+  void order_slots();
+  int *sperm;           // order_slots: new slot index of each automaton's old ones
+  bigint maxsperm;
   void image_shifts();
   void canonical_geometry(int a, int b, const int *jimg, bool i_is_a, double *R, double *Va,
                           double *Vb);
