@@ -54,7 +54,7 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   manybody_flag = 1;
   no_virial_fdotr_compute = 1;
   finitecutflag = 1;
-  comm_forward = 13;
+  comm_forward = PR;
   nextra = NTALLY;
   pvector = new double[NTALLY];
   for (int k = 0; k < NTALLY; k++) pvector[k] = 0.0;
@@ -70,7 +70,6 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   sacc = nullptr;
   maxsacc = 0;
   xo = nullptr;
-  pin = nullptr;
   gimg = nullptr;
   maxxo = 0;
   bat = nullptr;
@@ -93,7 +92,6 @@ PairMCA::~PairMCA()
   memory->destroy(eflag);
   memory->destroy(sacc);
   memory->destroy(xo);
-  memory->destroy(pin);
   memory->destroy(gimg);
   memory->destroy(sperm);
   delete bat;
@@ -488,28 +486,6 @@ void PairMCA::image_shifts()
   }
 }
 
-void PairMCA::canonical_geometry(int a, int b, const int *jimg, bool i_is_a, double *R, double *Va,
-                                 double *Vb)
-{
-  // (the caller handles a partner that is not an image: R = x_b - x_a)
-  // image of b relative to a (j is the ghost: b's image if i is a, else minus a's)
-  const double n0 = i_is_a ? jimg[0] : -jimg[0], n1 = i_is_a ? jimg[1] : -jimg[1],
-               n2 = i_is_a ? jimg[2] : -jimg[2];
-  const double *h = domain->h;
-  const double sh[3] = {n0 * h[0] + n1 * h[5] + n2 * h[4], n1 * h[1] + n2 * h[3], n2 * h[2]};
-  for (int c = 0; c < 3; c++) {
-    R[c] = (xo[b][c] - xo[a][c]) + sh[c];
-    Va[c] = xo[a][3 + c];
-    Vb[c] = xo[b][3 + c];
-  }
-  if (domain->deform_vremap) {
-    // fix deform remap v: an image moves with the box's rate of deformation
-    const double *hr = domain->h_rate;
-    Vb[0] += n0 * hr[0] + n1 * hr[5] + n2 * hr[4];
-    Vb[1] += n1 * hr[1] + n2 * hr[3];
-    Vb[2] += n2 * hr[2];
-  }
-}
 
 /* ---------------------------------------------------------------------- */
 
@@ -519,7 +495,7 @@ void PairMCA::compute(int eflag, int vflag)
   if (!fix) ensure_fix();
 
   double **x = atom->x, **v = atom->v, **f = atom->f;
-  double **torque = atom->torque;
+  double **torque = atom->torque, **omega = atom->omega;
   const int nlocal = atom->nlocal;
   const int dim = domain->dimension;
   const bool advance = (double) update->ntimestep > fix->last_commit;
@@ -528,15 +504,15 @@ void PairMCA::compute(int eflag, int vflag)
   if (atom->nmax > maxxo) {
     maxxo = atom->nmax;
     memory->destroy(xo);
-    memory->destroy(pin);
-    memory->destroy(gimg);
-    memory->create(xo, maxxo, 6, "pair:mca:xo");
-    memory->create(pin, maxxo, 8, "pair:mca:pin");
+      memory->destroy(gimg);
+    memory->create(xo, maxxo, PR, "pair:mca:xo");
     memory->create(gimg, maxxo, 3, "pair:mca:gimg");
   }
-  // the pair inputs of each automaton in one compact row (ghosts receive them): the mean-stress
-  // term X (of the previous step; a re-evaluation uses the X the forces of the last committed
-  // step used, so it reproduces those forces exactly) and the pending plastic strain increment
+  // everything a pair reads of an automaton in one row of PR doubles (two cache lines; ghosts
+  // receive it): position and velocity (the owner's), angular velocity, the mean-stress term X
+  // (of the previous step; a re-evaluation uses the X the forces of the last committed step
+  // used, so it reproduces those forces exactly) and the pending plastic strain increment.  A
+  // partner then costs two cache lines where x, v, omega and the inputs cost four
   double **autom = fix->autom;
   const int ix = advance ? FS::A_X : FS::A_XU;
   if (nlocal > maxsacc) {
@@ -546,14 +522,15 @@ void PairMCA::compute(int eflag, int vflag)
   }
   // (one pass over the automata: the Love-Weber sums are cleared here as well)
   for (int i = 0; i < nlocal; i++) {
-    double *xoi = xo[i], *pini = pin[i], *si = sacc[i];
-    const double *xi = x[i], *vi = v[i], *am = autom[i];
+    double *xoi = xo[i], *si = sacc[i];
+    const double *xi = x[i], *vi = v[i], *oi = omega[i], *am = autom[i];
     for (int c = 0; c < 3; c++) {
-      xoi[c] = xi[c];
-      xoi[3 + c] = vi[c];
+      xoi[R_X + c] = xi[c];
+      xoi[R_V + c] = vi[c];
+      xoi[R_OM + c] = oi[c];
     }
-    pini[0] = am[ix];
-    for (int c = 0; c < 6; c++) pini[1 + c] = am[FS::A_DEP + c];
+    xoi[R_XM] = am[ix];
+    for (int c = 0; c < 6; c++) xoi[R_DEP + c] = am[FS::A_DEP + c];
     for (int k = 0; k < 8; k++) si[k] = 0.0;
   }
   comm->forward_comm(this);
@@ -677,14 +654,13 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   // row pointers)
   const double *x = atom->x[0], *v = atom->v[0];
   double *f = atom->f[0], *torque = atom->torque[0];
-  const double *omega = atom->omega[0];
   double *radius = atom->radius, *rmass = atom->rmass;
   tagint *tag = atom->tag;
   const double dt = update->dt;
   double **autom = fix->autom;
   double *slots = fix->slots[0];
   const int slotrow = fix->maxpartner * FS::NSLOT;
-  const double *xo0 = xo[0], *pin0 = pin[0];
+  const double *xo0 = xo[0];
   double *sacc0 = sacc[0];
   const int *gimg0 = gimg[0];
   const double *h = domain->h;
@@ -833,7 +809,8 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       double R0, R1, R2 = 0.0, Va0, Va1, Va2 = 0.0, Vb0, Vb1, Vb2 = 0.0;
       if (!(ef & E_IMAGE)) {
         // local partner or a plain copy of a remote atom: both ranks hold the same numbers
-        const double *xa = x + 3 * a, *xb = x + 3 * b, *va = v + 3 * a, *vb = v + 3 * b;
+        // (a row holds the atom's own x and v: for these pairs the same numbers as atom->x, v)
+        const double *xa = xo0 + PR * a, *xb = xo0 + PR * b, *va = xa + R_V, *vb = xb + R_V;
         R0 = xb[0] - xa[0];
         R1 = xb[1] - xa[1];
         Va0 = va[0];
@@ -849,7 +826,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         const int *jimg = gimg0 + 3 * j;
         // image of b relative to a (j is the ghost: b's image if i is a, else minus a's)
         const double n0 = i_is_a ? jimg[0] : -jimg[0], n1 = i_is_a ? jimg[1] : -jimg[1];
-        const double *xa = xo0 + 6 * a, *xb = xo0 + 6 * b;
+        const double *xa = xo0 + PR * a, *xb = xo0 + PR * b;
         if (D3) {
           const double n2 = i_is_a ? jimg[2] : -jimg[2];
           R0 = (xb[0] - xa[0]) + (n0 * h[0] + n1 * h[5] + n2 * h[4]);
@@ -911,8 +888,8 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       // inputs of pass 2a (the common case: an existing link, advanced)
       if (ADV && k1 >= 0) {
         const double *sl = &slots_i[k1 * FS::NSLOT];
-        const double *oa = omega + 3 * a, *ob = omega + 3 * b;
-        const double *pa = pin0 + 8 * a, *pb = pin0 + 8 * b;
+        const double *oa = xo0 + PR * a + R_OM, *ob = xo0 + PR * b + R_OM;
+        const double *pa = xo0 + PR * a + R_XM, *pb = xo0 + PR * b + R_XM;
         B.kind[ip] = sl[FS::S_KIND];
         B.pn[ip] = sl[FS::S_PN];
         B.cd[ip] = sl[FS::S_CD];
@@ -1089,7 +1066,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       }
 
       const double ra = UNI ? runi : radius[a], rb = UNI ? runi : radius[b];
-      const double *oa = omega + 3 * a, *ob = omega + 3 * b;
+      const double *oa = xo0 + PR * a + R_OM, *ob = xo0 + PR * b + R_OM;
       // ws = ra omega_a + rb omega_b, wxn = ws x n (2D: ws along z)
       double wxn0, wxn1, wxn2 = 0.0;
       if (D3) {
@@ -1135,7 +1112,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         if (linked0) {
           // plastic offsets: the pending plastic strain increments of a and b
           // (mean of the two halves of the pair) leave the elastic pair strain
-          const double *pa = pin0 + 8 * a + 1, *pb = pin0 + 8 * b + 1;
+          const double *pa = xo0 + PR * a + R_DEP, *pb = xo0 + PR * b + R_DEP;
           // (tensor order xx yy zz xy xz yz; in 2D the zz increment does not act on in-plane
           // pairs and xz, yz vanish)
           const double D0 = 0.5 * (pa[0] + pb[0]), D1 = 0.5 * (pa[1] + pb[1]),
@@ -1172,7 +1149,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
 
       const double A = UNI ? A_u : pair_area(dbar, DIM);
       const double sf = G2 * idbar;    // shear_factor(mat, dbar)
-      const double Xbar = 0.5 * (pin0[8 * a] + pin0[8 * b]);    // (see compute)
+      const double Xbar = 0.5 * (xo0[PR * a + R_XM] + xo0[PR * b + R_XM]);    // (see compute)
       double sn = 0.0, t0 = 0.0, t1 = 0.0, t2v = 0.0;
 
       if (linked0) {
@@ -1572,9 +1549,8 @@ int PairMCA::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, 
 {
   int m = 0;
   for (int q = 0; q < n; q++) {
-    const double *pq = pin[list[q]], *xq = xo[list[q]];
-    for (int c = 0; c < 7; c++) buf[m++] = pq[c];
-    for (int c = 0; c < 6; c++) buf[m++] = xq[c];
+    const double *xq = xo[list[q]];
+    for (int c = 0; c < PR; c++) buf[m++] = xq[c];
   }
   return m;
 }
@@ -1583,9 +1559,8 @@ void PairMCA::unpack_forward_comm(int n, int first, double *buf)
 {
   int m = 0;
   for (int i = first; i < first + n; i++) {
-    double *pq = pin[i], *xq = xo[i];
-    for (int c = 0; c < 7; c++) pq[c] = buf[m++];
-    for (int c = 0; c < 6; c++) xq[c] = buf[m++];
+    double *xq = xo[i];
+    for (int c = 0; c < PR; c++) xq[c] = buf[m++];
   }
 }
 
@@ -1637,5 +1612,6 @@ void PairMCA::read_restart(FILE *fp)
 double PairMCA::memory_usage()
 {
   return (double) maxflat * (4 * sizeof(int)) + (double) maxsacc * 8 * sizeof(double) +
+      (double) maxxo * (PR * sizeof(double) + 3 * sizeof(int)) + (double) maxsperm * sizeof(int) +
       (bat ? sizeof(Batch) : 0) + (abat ? sizeof(AutomBatch) : 0);
 }

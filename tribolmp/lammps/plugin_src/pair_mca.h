@@ -75,8 +75,10 @@ class PairMCA : public Pair {
   double **sacc;        // Love-Weber sums and link counts of local atoms
   int maxsacc;
   int coeffset;
-  double **xo;          // owner coordinates and velocities (x, v) of local and ghost atoms
-  double **pin;         // pair inputs of local and ghost atoms: X, pending plastic increment[6]
+  // one row per local and ghost atom: the owner's x, v, omega, the mean-stress term X and the
+  // pending plastic strain increment (xx yy zz xy xz yz); PR doubles = two cache lines
+  enum { R_X = 0, R_V = 3, R_OM = 6, R_XM = 9, R_DEP = 10, PR = 16 };
+  double **xo;
   int **gimg;           // periodic image (integers) of each ghost relative to its owner
   int maxxo;
   // pair geometry and inputs of the general path (pass 2b of pair_loop)
@@ -152,8 +154,6 @@ class PairMCA : public Pair {
   int *sperm;           // order_slots: new slot index of each automaton's old ones
   bigint maxsperm;
   void image_shifts();
-  void canonical_geometry(int a, int b, const int *jimg, bool i_is_a, double *R, double *Va,
-                          double *Vb);
   int find_slot(int i, double jtag);
   int new_slot(int i, double jtag);
   int initial_link_kind(int i, tagint jtag, double rsq, double dbar, bool same_body);
