@@ -6,7 +6,9 @@ Default (law comparison, issue 13): the same periodic lattice block (2D hexagona
 d = 2.5 nm steel, thermal noise, sheared at a constant tilt velocity through yield) runs
 ``lammps_inputs/mca_block.in`` with the ``mca`` plugin law and with today's
 ``bpm/spring/plastic`` links (granular hooke contacts, unlimited ``fix bond/create``), each for a
-loop of >= 10 s of LAMMPS time (calibrated by a short first run), on 1 rank.  Automaton-steps per
+loop of >= 10 s of LAMMPS time (calibrated by a short first run; every row of a system then runs
+the same number of steps, the largest calibrated one, so that all cover the same phase of the
+shear), on 1 rank.  Automaton-steps per
 second come from LAMMPS's ``Loop time``; ``ratio`` is mca / bpm on the same system (goal >= 0.7).
 Each law runs at its own stable timestep (both 0.1 sqrt(m/k) of their stiffest spring), so the
 table also gives simulated ns per wall hour.
@@ -223,7 +225,7 @@ def laws_main(
     )
     with tempfile.TemporaryDirectory(prefix="mca_laws_") as tmp:
         for dim, n in LAW_SYSTEMS_QUICK if quick else LAW_SYSTEMS:
-            res = {}
+            res, cals = {}, {}
             for law in laws:
                 out = Path(tmp) / f"{dim}d_{re.sub(r'[/@+]', '_', law)}"
                 base = law.split("@")[0].split("+")[0]
@@ -246,7 +248,12 @@ def laws_main(
                         )
                 v.update(drive="deform", vshear="5.0")
                 cal = _block_run(v, out / "cal", 200 if quick else 500)
-                steps = max(200, int(loop_s * cal["rate"] / cal["atoms"]))
+                cals[law] = (v, out, max(200, int(loop_s * cal["rate"] / cal["atoms"])))
+            # one step count for every row (the longest calibrated one: each loop >= loop_s), so
+            # that the rows cover the same phase of the shear (elastic, yield, rupture), whose
+            # cost per step differs
+            steps = max(n for _, _, n in cals.values())
+            for law, (v, out, _) in cals.items():
                 r = _block_run(v, out / "run", steps)
                 r["dt_ns"] = float(v["dt"])
                 res[law] = r
@@ -305,9 +312,10 @@ def friction_main(
     The system of a preset (rigid slider, two rough bodies, fixed base; ``mca_friction.in``
     with ``drive deck``: the slider presses and slides from the built state) is prepared once
     per law, as ``tribolmp mca run`` would, and run for a loop of about ``loop_s`` of LAMMPS
-    time (calibrated by a short first run) on 1 rank.  Unlike the block, this deck asks for the
-    global virial on every step (its ``fix ave/time 1 N N``), and its bodies are bounded by
-    free surfaces and rigid layers.
+    time (calibrated by a short first run; all laws then run the same number of steps, the
+    largest calibrated one, so that the rows cover the same phase of the run) on 1 rank.
+    Unlike the block, this deck asks for the global virial on every step (its ``fix ave/time
+    1 N N``), and its bodies are bounded by free surfaces and rigid layers.
     """
     from tribolmp.lammps import mca
     from tribolmp.lammps.mca.prepare import prepare as mca_prepare
@@ -320,7 +328,7 @@ def friction_main(
     )
     with tempfile.TemporaryDirectory(prefix="mca_friction_") as tmp:
         for dim, preset in FRICTION_SYSTEMS_QUICK if quick else FRICTION_SYSTEMS:
-            res = {}
+            res, runs = {}, {}
             for law in laws:
                 params = mca.preset_params(
                     preset,
@@ -334,7 +342,7 @@ def friction_main(
                 if "@" in law:
                     variables["mca_plugin"] = str(Path(reference).resolve())
 
-                def timed(steps: int, name: str) -> dict:
+                def timed(steps: int, name: str, variables=variables, prep=prep) -> dict:
                     v = dict(
                         variables,
                         drive="deck",
@@ -345,7 +353,12 @@ def friction_main(
                     return _run("python-1", v, prep / name)
 
                 cal = timed(300, "cal")
-                steps = max(400, int(loop_s * cal["rate"] / cal["atoms"]))
+                runs[law] = (timed, max(400, int(loop_s * cal["rate"] / cal["atoms"])))
+            # one step count for every law (the longest calibrated one, so each loop is >= loop_s):
+            # the rate depends on the phase of the run (approach, first contact, sliding), so the
+            # rows must cover the same steps from the same built state
+            steps = max(n for _, n in runs.values())
+            for law, (timed, _) in runs.items():
                 res[law] = timed(steps, "run")
             for law, r in res.items():
                 ratio = r["rate"] / res["bpm/spring/plastic"]["rate"]

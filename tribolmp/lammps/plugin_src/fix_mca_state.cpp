@@ -3,6 +3,7 @@
 ------------------------------------------------------------------------- */
 
 #include "fix_mca_state.h"
+#include "mca_memory.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -106,6 +107,9 @@ void FixMCAState::grow_arrays(int nmax)
   memory->grow(autom, nmax, NAUTO, "mca/state:autom");
   memory->grow(out, nmax, NOUT, "mca/state:out");
   array_atom = out;
+  // (before the new rows are first written: see mca_memory.h)
+  MCAMemory::hugepage_hint(slots[0], sizeof(double) * nmax * maxpartner * NSLOT);
+  MCAMemory::hugepage_hint(autom[0], sizeof(double) * nmax * NAUTO);
   for (int i = nmax_local; i < nmax; i++) {
     memset(slots[i], 0, sizeof(double) * maxpartner * NSLOT);
     memset(autom[i], 0, sizeof(double) * NAUTO);
