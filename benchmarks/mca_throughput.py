@@ -429,27 +429,16 @@ def main(argv: list[str] | None = None) -> int:
         return _worker(args.worker)
     if args.block_worker:
         return _block_worker(args.block_worker)
-    if args.friction:
-        name = f"mca_throughput_friction{'_quick' if args.quick else ''}.csv"
+    if args.friction or not args.interfaces:
+        # the law comparisons: on the friction system, or on the block
+        kind = "friction" if args.friction else "laws"
+        name = f"mca_throughput_{kind}{'_quick' if args.quick else ''}.csv"
         csv_path = Path(args.out) if args.out else Path(__file__).parent / "results" / name
-        return friction_main(
-            args.quick,
-            csv_path,
-            2.0 if args.quick else args.loop,
-            args.reference_plugin,
-            args.reference_label,
-        )
-    if not args.interfaces:
-        name = f"mca_throughput_laws{'_quick' if args.quick else ''}.csv"
-        csv_path = Path(args.out) if args.out else Path(__file__).parent / "results" / name
-        return laws_main(
-            args.quick,
-            csv_path,
-            2.0 if args.quick else args.loop,
-            args.reference_plugin,
-            args.reference_label,
-            args.reference_settings,
-        )
+        common = (args.quick, csv_path, 2.0 if args.quick else args.loop)
+        ref = (args.reference_plugin, args.reference_label)
+        if args.friction:
+            return friction_main(*common, *ref)
+        return laws_main(*common, *ref, args.reference_settings)
 
     from tribolmp.lammps import mca
     from tribolmp.lammps.mca.prepare import prepare as mca_prepare

@@ -142,6 +142,18 @@ def test_required_styles_present(lmp):
         lmp.require_styles([("bond", "no/such/bond")])
 
 
+def _two_ranks(script: Path) -> subprocess.CompletedProcess:
+    """Run ``script`` on two ranks with the mpich wheel's mpiexec, in the script's folder."""
+    return subprocess.run(
+        [str(mpiexec()), "-n", "2", sys.executable, str(script)],
+        capture_output=True,
+        text=True,
+        env=_clean_env(),
+        timeout=300,
+        cwd=script.parent,
+    )
+
+
 @pytest.mark.mpi
 def test_session_under_mpiexec_two_ranks(lammps_available, tmp_path):
     """Two ranks share one LAMMPS instance; each reports world size 2; errors still map."""
@@ -168,14 +180,7 @@ def test_session_under_mpiexec_two_ranks(lammps_available, tmp_path):
             """
         )
     )
-    proc = subprocess.run(
-        [str(mpiexec()), "-n", "2", sys.executable, str(script)],
-        capture_output=True,
-        text=True,
-        env=_clean_env(),
-        timeout=300,
-        cwd=tmp_path,
-    )
+    proc = _two_ranks(script)
     assert proc.returncode == 0, proc.stderr
     lines = sorted((tmp_path / f"rank{r}.txt").read_text() for r in (0, 1))
     assert lines == [
@@ -213,13 +218,6 @@ def test_a_rank_that_ends_first_does_not_kill_the_root(lammps_available, tmp_pat
             """
         )
     )
-    proc = subprocess.run(
-        [str(mpiexec()), "-n", "2", sys.executable, str(script)],
-        capture_output=True,
-        text=True,
-        env=_clean_env(),
-        timeout=300,
-        cwd=tmp_path,
-    )
+    proc = _two_ranks(script)
     assert proc.returncode == 0, proc.stdout[-800:] + proc.stderr[-800:]
     assert (tmp_path / "root.txt").read_text() == "written"
