@@ -230,7 +230,7 @@ def mca_pair_commands(law: McaLaw, plugin: str | None = None) -> list[str]:
     -------
     list of str
         LAMMPS commands.  The deck must use ``atom_style bpm/sphere`` (or
-        sphere), ``comm_modify vel yes`` and integrate with ``fix nve/sphere``
+        sphere) and integrate with ``fix nve/sphere``
         or ``fix nve/bpm/sphere`` (plus ``fix enforce2d`` in 2D).
     """
     v = mca_deck_variables(law)

@@ -61,6 +61,7 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   for (int k = 0; k < NTALLY; k++) pvector[k] = 0.0;
   cacheflat = nullptr;
   mirrorflat = nullptr;
+  eimg = nullptr;
   cacheoff = nullptr;
   ecount = nullptr;
   ej = nullptr;
@@ -87,6 +88,7 @@ PairMCA::~PairMCA()
   delete[] pvector;
   memory->destroy(cacheflat);
   memory->destroy(mirrorflat);
+  memory->destroy(eimg);
   memory->destroy(cacheoff);
   memory->destroy(ecount);
   memory->destroy(ej);
@@ -201,8 +203,7 @@ void PairMCA::init_style()
   if (!atom->radius_flag || !atom->omega_flag || !atom->torque_flag || !atom->rmass_flag)
     error->all(FLERR, "pair mca: needs per-atom radius, omega, torque and mass "
                "(atom_style bpm/sphere or sphere)");
-  if (comm->ghost_velocity == 0)
-    error->all(FLERR, "pair mca: needs ghost velocities: add 'comm_modify vel yes'");
+  // (no ghost velocities needed: the rows of xo carry each automaton's v and omega to its ghosts)
   if (!coeffset) error->all(FLERR, "pair mca: pair_coeff * * ... not set");
   if (link_init == 3 && (!atom->molecular || force->newton_bond))
     error->all(FLERR, "pair mca: link_init bonds needs a molecular atom style and 'newton on off' "
@@ -291,7 +292,9 @@ void PairMCA::rebuild_cache()
     memory->destroy(eflag);
     memory->destroy(cacheflat);
     memory->destroy(mirrorflat);
+    memory->destroy(eimg);
     memory->create(ej, maxflat, "pair:mca:ej");
+    memory->create(eimg, maxflat, "pair:mca:eimg");
     memory->create(eflag, maxflat, "pair:mca:eflag");
     memory->create(cacheflat, maxflat, "pair:mca:cacheflat");
     memory->create(mirrorflat, maxflat, "pair:mca:mirrorflat");
@@ -313,6 +316,10 @@ void PairMCA::rebuild_cache()
   double **x = atom->x;
   const double *radius = atom->radius;
   const double skin = neighbor->skin;
+  // (the map from IDs to local indices exists for molecular atom styles, and LAMMPS sets it at
+  // every reneighbouring, before the lists are built; a local atom takes precedence over its
+  // ghost images)
+  const bool usemap = atom->map_style != Atom::MAP_NONE;
   bigint off = 0;
   for (int i = 0; i < nlocal; i++) {
     cacheoff[i] = -1;
@@ -337,12 +344,23 @@ void PairMCA::rebuild_cache()
         seen[k] = 1;
       }
       // the pairs this automaton evaluates, in the neighbour list's order: every ghost partner
-      // (but its own image), and a local partner with the larger ID (evaluated here for both)
+      // (but its own image), and a local partner with the larger ID (evaluated here for both).
+      // A ghost that is a periodic image of a local automaton is that automaton: the pair is
+      // evaluated once, by the smaller ID, as a local pair with the image's lattice vector
+      // (ej is then the owner).  A pair across a periodic boundary of the rank otherwise costs
+      // two evaluations (a tenth of the pairs of the thin 3D friction slab)
       if (jtag == itag) continue;
-      const bool jlocal = j < nlocal;
+      const int *jimg = gimg[j];
+      const bool image = (jimg[0] | jimg[1] | jimg[2]) != 0;
+      int jo = j;    // the partner's own index (local or ghost)
+      if (j >= nlocal && image && usemap) {
+        const int m = atom->map(tag[j]);
+        if (m >= 0 && m < nlocal) jo = m;
+      }
+      const bool jlocal = jo < nlocal;
       if (jlocal && jtag < itag) continue;
       // local partner: its slot for this automaton
-      const int kj = jlocal ? find_slot(j, itag) : -1;
+      const int kj = jlocal ? find_slot(jo, itag) : -1;
       if (prune && k < 0 && kj < 0) {
         // no state on either side: the pair matters only if it can touch before the next
         // rebuild, and by then its distance has changed by at most the skin
@@ -350,11 +368,11 @@ void PairMCA::rebuild_cache()
         const double lim = (radius[i] + radius[j] + skin) * (1.0 + 1e-9);
         if (dx * dx + dy * dy + dz * dz >= lim * lim) continue;
       }
-      const int *jimg = gimg[j];
       const int e = off + ne++;
-      ej[e] = j;
-      eflag[e] = (itag < jtag ? E_IA : 0) | (jlocal ? E_LOCAL : 0) |
-          ((jimg[0] | jimg[1] | jimg[2]) != 0 ? E_IMAGE : 0) | ((!mol || mol[i] == mol[j]) ? E_SAME : 0);
+      ej[e] = jo;
+      eflag[e] = (itag < jtag ? E_IA : 0) | (jlocal ? E_LOCAL : 0) | (image ? E_IMAGE : 0) |
+          ((!mol || mol[i] == mol[j]) ? E_SAME : 0);
+      eimg[e] = image ? pack_image(jimg) : 0;
       cacheflat[e] = k;
       mirrorflat[e] = kj;
     }
@@ -665,7 +683,6 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   const int slotrow = fix->maxpartner * FS::NSLOT;
   const double *xo0 = xo[0];
   double *sacc0 = sacc[0];
-  const int *gimg0 = gimg[0];
   const double *h = domain->h;
   const double *hr = domain->h_rate;
   const bool vremap = domain->deform_vremap;
@@ -829,8 +846,9 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
           Vb2 = vb[2];
         }
       } else {
-        const int *jimg = gimg0 + 3 * j;
-        // image of b relative to a (j is the ghost: b's image if i is a, else minus a's)
+        int jimg[3];
+        unpack_image(eimg[eoff + jj], jimg);
+        // image of b relative to a (of the partner j: b's image if i is a, else minus a's)
         const double n0 = i_is_a ? jimg[0] : -jimg[0], n1 = i_is_a ? jimg[1] : -jimg[1];
         const double *xa = xo0 + PR * a, *xb = xo0 + PR * b;
         if (D3) {
@@ -1617,7 +1635,7 @@ void PairMCA::read_restart(FILE *fp)
 
 double PairMCA::memory_usage()
 {
-  return (double) maxflat * (4 * sizeof(int)) + (double) maxsacc * 8 * sizeof(double) +
+  return (double) maxflat * (5 * sizeof(int)) + (double) maxsacc * 8 * sizeof(double) +
       (double) maxxo * (PR * sizeof(double) + 3 * sizeof(int)) + (double) maxsperm * sizeof(int) +
       (bat ? sizeof(Batch) : 0) + (abat ? sizeof(AutomBatch) : 0);
 }

@@ -67,6 +67,7 @@ class PairMCA : public Pair {
   int *eflag;           // E_* bits
   int *cacheflat;       // slot index of i for the pair (-1: none)
   int *mirrorflat;      // local partner: its slot for i (-1: none)
+  int *eimg;            // periodic image of the partner relative to its owner, packed (pack_image)
   bigint *cacheoff;     // offset of atom i's pairs (-1: none)
   int *ecount;          // number of atom i's pairs
   int ncached;          // local atoms when the lists were built
@@ -154,6 +155,17 @@ class PairMCA : public Pair {
   int *sperm;           // order_slots: new slot index of each automaton's old ones
   bigint maxsperm;
   void image_shifts();
+  // a lattice vector of periodic images (components |n| < 512) in one int
+  static int pack_image(const int *n)
+  {
+    return (n[0] + 512) | (n[1] + 512) << 10 | (n[2] + 512) << 20;
+  }
+  static void unpack_image(int p, int *n)
+  {
+    n[0] = (p & 1023) - 512;
+    n[1] = ((p >> 10) & 1023) - 512;
+    n[2] = ((p >> 20) & 1023) - 512;
+  }
   int find_slot(int i, double jtag);
   int new_slot(int i, double jtag);
   int initial_link_kind(int i, tagint jtag, double rsq, double dbar, bool same_body);
