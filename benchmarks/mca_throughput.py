@@ -238,6 +238,8 @@ def laws_main(
                     )
                 if "@" in law:
                     v["plugin"] = str(Path(reference).resolve())
+                    # a build before 2026-12-02 asks for LAMMPS's ghost velocities
+                    v["mca_ghost_vel"] = "yes"
                     if reference_settings == "old":
                         # the block deck's mca settings before fix nve/mca (main at 3c1f250)
                         d = _diameter_nm(v)
@@ -341,6 +343,7 @@ def friction_main(
                 variables = {k: str(v) for k, v in mca_prepare(params, prep, 1, {}).items()}
                 if "@" in law:
                     variables["mca_plugin"] = str(Path(reference).resolve())
+                    variables["mca_ghost_vel"] = "yes"  # (as in laws_main)
 
                 def timed(steps: int, name: str, variables=variables, prep=prep) -> dict:
                     v = dict(
