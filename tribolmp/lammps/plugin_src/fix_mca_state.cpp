@@ -169,8 +169,9 @@ void FixMCAState::unpack_restart(int nlocal, int nth)
   const int n = static_cast<int>(extra[nlocal][m]);
   const int ns = maxpartner * NSLOT;
   if (n != ns + NAUTO + 1)
-    error->one(FLERR, "fix mca/state: restart record of {} values, expected {} (maxpartner differs?)",
-               n, ns + NAUTO + 1);
+    error->one(FLERR, "fix mca/state: restart record of {} values, expected {}: the file was "
+               "written with another maxpartner or by a plugin before 2026-12-02 (slots of {} "
+               "values, now {}); rerun from the data file", n, ns + NAUTO + 1, (int) NSLOT + 2, (int) NSLOT);
   m++;
   memcpy(slots[nlocal], &extra[nlocal][m], sizeof(double) * ns);
   memcpy(autom[nlocal], &extra[nlocal][m + ns], sizeof(double) * NAUTO);

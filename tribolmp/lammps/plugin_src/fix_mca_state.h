@@ -30,12 +30,10 @@ namespace LAMMPS_NS {
 
 class FixMCAState : public Fix {
  public:
-  // slot layout (doubles): partner tag, kind, p_n, xi[3], theta_rel[3], R_prev[3], and the
-  // pair's link damping constants (translation, rotation), fixed by its two automata
-  enum {
-    S_TAG = 0, S_KIND, S_PN, S_XI, S_TH = S_XI + 3, S_RP = S_TH + 3, S_CD = S_RP + 3, S_CR,
-    NSLOT
-  };
+  // slot layout (doubles): partner tag, kind, p_n, xi[3], theta_rel[3], R_prev[3].  (Until
+  // 2026-12-02 two more: the link damping constants, now recomputed from the two automata's
+  // masses and radii, mca_law.h link_damping; a restart file of 14-value slots is refused.)
+  enum { S_TAG = 0, S_KIND, S_PN, S_XI, S_TH = S_XI + 3, S_RP = S_TH + 3, NSLOT = S_RP + 3 };
   enum { FREE = 0, LINK = 1, WELD = 2, CONTACT = 3, ATTACH = 4 };
   // automaton layout: stress[6], eps_p tensor[6], eps_eq, pending deps[6], X,
   // n_links, n_cross, counters[4] (cross formed, cross broken, links broken, welds formed),

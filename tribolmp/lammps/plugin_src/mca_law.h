@@ -154,6 +154,22 @@ inline double rotational_stiffness(const Material &m, double A, double dbar)
   return 2.0 * m.G * A * A / (12.0 * dbar);
 }
 
+// Link damping (numerical, a fraction `damp` of critical): the constants of a linked pair of
+// masses ma, mb and radii ra, rb, for the relative velocity (cd: the pair's volumetric normal
+// stiffness Kc A / dbar against the reduced mass) and the relative rotation (cr: the rotational
+// stiffness against the reduced moment of inertia of two spheres, I = 0.4 m r^2).  Fixed by
+// the two automata, so they are recomputed rather than stored with the pair.
+inline void link_damping(const Material &m, double ma, double mb, double ra, double rb, double A,
+                         double dbar, double &cd, double &cr)
+{
+  const double meff = ma * mb / (ma + mb);
+  const double kl = m.Kc * A / dbar;
+  const double kr0 = rotational_stiffness(m, A, dbar);
+  const double Ia = 0.4 * ma * ra * ra, Ib = 0.4 * mb * rb * rb;
+  cd = m.damp * 2.0 * std::sqrt(kl * meff);
+  cr = m.damp * 2.0 * std::sqrt(kr0 * Ia * Ib / (Ia + Ib));
+}
+
 // Rule 6 (viscosity of unlinked contacts, the seed's dissipative force):
 // F_visc on a = eta A / dbar * v_rel (v_rel = velocity of b's contact point
 // relative to a's).

@@ -77,6 +77,7 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   bat = nullptr;
   abat = nullptr;
   maxecount = 0;
+  mass_uni = 0.0;
   batch_on = 1;
   prune_on = 1;
   sperm = nullptr;
@@ -568,6 +569,9 @@ void PairMCA::compute(int eflag, int vflag)
   double runi = (nall > 0) ? atom->radius[0] : 0.0;
   for (int i = 1; i < nall && runi > 0.0; i++)
     if (atom->radius[i] != runi) runi = 0.0;
+  mass_uni = (nall > 0) ? atom->rmass[0] : 0.0;
+  for (int i = 1; i < nall && mass_uni > 0.0; i++)
+    if (atom->rmass[i] != mass_uni) mass_uni = 0.0;
   double tally[3] = {0.0, 0.0, 0.0};
   if (runi > 0.0) {
     if (dim == 2) {
@@ -673,7 +677,6 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   if (inum == 0) return;
   // per-atom arrays through their contiguous storage (one load less per access than the
   // row pointers)
-  const double *x = atom->x[0], *v = atom->v[0];
   double *f = atom->f[0], *torque = atom->torque[0];
   double *radius = atom->radius, *rmass = atom->rmass;
   tagint *tag = atom->tag;
@@ -693,6 +696,10 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   const double dbar_u = runi + runi;
   const double A_u = pair_area(dbar_u, DIM), kr_u = rotational_stiffness(mat, A_u, dbar_u);
   const double cv_u = viscous_factor(mat, A_u, dbar_u);
+  // one radius and one mass for all automata: one pair of link damping constants
+  const bool muni = UNI && mass_uni > 0.0;
+  double cd_u = 0.0, cr_u = 0.0;
+  if (muni) link_damping(mat, mass_uni, mass_uni, runi, runi, A_u, dbar_u, cd_u, cr_u);
   double tally_links = 0.0, tally_cross = 0.0, tally_contacts = 0.0;
 
   int *ilist = list->ilist;
@@ -916,8 +923,14 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         const double *pa = xo0 + PR * a + R_XM, *pb = xo0 + PR * b + R_XM;
         B.kind[ip] = sl[FS::S_KIND];
         B.pn[ip] = sl[FS::S_PN];
-        B.cd[ip] = sl[FS::S_CD];
-        B.cr[ip] = sl[FS::S_CR];
+        if (muni) {
+          B.cd[ip] = cd_u;
+          B.cr[ip] = cr_u;
+        } else {
+          const double A = UNI ? A_u : pair_area(dbar, DIM);
+          link_damping(mat, rmass[a], rmass[b], UNI ? runi : radius[a], UNI ? runi : radius[b],
+                       A, dbar, B.cd[ip], B.cr[ip]);
+        }
         B.xi0[ip] = sl[FS::S_XI];
         B.xi1[ip] = sl[FS::S_XI + 1];
         B.rp0[ip] = sl[FS::S_RP];
@@ -1251,17 +1264,9 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         if (D3) Fd2 = cv * vr2;
         Ma2 = 0.0;
       } else {
-        if (s[FS::S_CD] == 0.0 && mat.damp > 0.0) {
-          // damping constants of the pair (fixed by masses and radii): once per link
-          const double ma = rmass[a], mb = rmass[b];
-          const double meff = ma * mb / (ma + mb);
-          const double kl = mat.Kc * A / dbar;
-          const double kr0 = rotational_stiffness(mat, A, dbar);
-          const double Ia = 0.4 * ma * ra * ra, Ib = 0.4 * mb * rb * rb;
-          s[FS::S_CD] = mat.damp * 2.0 * std::sqrt(kl * meff);
-          s[FS::S_CR] = mat.damp * 2.0 * std::sqrt(kr0 * Ia * Ib / (Ia + Ib));
-        }
-        const double cd = s[FS::S_CD], cr = s[FS::S_CR];
+        // damping constants of the pair (fixed by masses and radii)
+        double cd = cd_u, cr = cr_u;
+        if (!muni) link_damping(mat, rmass[a], rmass[b], ra, rb, A, dbar, cd, cr);
         Fd0 = cd * vr0;
         Fd1 = cd * vr1;
         if (D3) Fd2 = cd * vr2;
@@ -1342,7 +1347,6 @@ template <int DIM, bool UNI> void PairMCA::batch_common(int n, double runi)
   const double G2 = 2.0 * mat.G;
   const double alpha = mat.alpha;
   const double s_link = mat.s0, s_weld = mat.wfac * mat.s0;
-  const bool damp_on = mat.damp > 0.0;
   const double dbar_u = runi + runi;
   const double A_u = pair_area(dbar_u, DIM), kr_u = rotational_stiffness(mat, A_u, dbar_u);
   const double LINK = FS::LINK, WELD = FS::WELD, ATTACH = FS::ATTACH;
@@ -1417,7 +1421,7 @@ template <int DIM, bool UNI> void PairMCA::batch_common(int n, double runi)
     const double cd = B.cd[p], cr = B.cr[p];
     const double kr = UNI ? kr_u : rotational_stiffness(mat, A, dbar);
     const bool linked0 = (kind == LINK) || (kind == WELD) || (kind == ATTACH);
-    B.elig[p] = (linked0 && !brk && !(cd == 0.0 && damp_on)) ? 1.0 : 0.0;
+    B.elig[p] = (linked0 && !brk) ? 1.0 : 0.0;
     B.xi0n[p] = xi0;
     B.xi1n[p] = xi1;
     B.pnn[p] = pn;

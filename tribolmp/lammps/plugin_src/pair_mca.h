@@ -144,6 +144,7 @@ class PairMCA : public Pair {
         seq[NABATCH], dep[6][NABATCH], sig[6][NABATCH];
   };
   AutomBatch *abat;
+  double mass_uni;      // the mass of every automaton (compute), or 0 if they differ
   int maxecount;        // the largest number of pairs of one automaton (rebuild_cache)
   int batch_on;         // 1: pass 2a computes the common case (pair_style keyword batch)
   int prune_on;         // 1: the evaluation lists leave out pairs that cannot touch (prune)
