@@ -1,7 +1,7 @@
 /* -*- c++ -*- ---------------------------------------------------------
    tribolmp MCA plugin: memory hints for the large per-atom arrays.
 
-   The pair state (fix mca/state's slots: maxpartner x 14 doubles per automaton, 2.2 kB in 3D)
+   The pair state (fix mca/state's slots: maxpartner x 12 doubles per automaton, 1.9 kB in 3D)
    and the per-automaton rows of pair mca span tens of MB in a friction system of 10^4-10^5
    automata, and the pair loop visits each automaton's rows in turn: with 4 kB pages nearly every
    automaton costs a TLB miss.  Where the kernel makes transparent huge pages only on request

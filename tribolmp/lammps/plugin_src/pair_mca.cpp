@@ -398,7 +398,7 @@ void PairMCA::rebuild_cache()
 /* Each automaton's slots in the order its evaluation list reads them, the slots of the pairs it
    evaluates first, then those it holds as the partner's copy (mirrors), then the free ones.
    The pair loop then reads one contiguous run of each automaton's row per step instead of
-   slots scattered over the whole row (the 3D pair state exceeds the caches: 20 slots of 112
+   slots scattered over the whole row (the 3D pair state exceeds the caches: 20 slots of 96
    bytes per automaton), and the prefetch of the next automaton covers just that run.  Only
    the slot indices change: the sums are formed in the order of the evaluation lists, and a
    slot is found by its partner's tag, so no number changes (tests/mca/test_law_batch.py,
@@ -975,7 +975,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   batch_geometry<DIM, UNI>(npre, runi);
 
   // pass 2a: the common case for the whole batch -- an existing link (or weld, attachment)
-  // advanced by one step that does not break and whose damping constants are set -- in loops
+  // advanced by one step that does not break -- in loops
   // without branches over the batch's arrays, which the compiler vectorises.  The same
   // expressions in the same order as the general path (pass 2b), so the same numbers; a pair
   // outside the common case (elig = 0) takes the general path with its state untouched
@@ -1335,8 +1335,8 @@ template <int DIM, bool UNI> void PairMCA::batch_geometry(int n, double runi)
    arithmetic over the batch's arrays (branches are selects, so the loop
    vectorises).  The expressions and their order are those of the general
    path in pair_loop, so a pair gets the same numbers on either path.  elig
-   is 1 where the result stands: linked, not breaking this step, damping
-   constants set (else the general path redoes the pair from its state).
+   is 1 where the result stands: linked and not breaking this step (else the
+   general path redoes the pair from its state).
 ------------------------------------------------------------------------- */
 
 template <int DIM, bool UNI> void PairMCA::batch_common(int n, double runi)
