@@ -566,12 +566,13 @@ void PairMCA::compute(int eflag, int vflag)
 
   // one radius for all automata (the common case): the pair constants are computed once
   const int nall = nlocal + atom->nghost;
+  // (and one mass: one pair of link damping constants; both found in one pass)
   double runi = (nall > 0) ? atom->radius[0] : 0.0;
-  for (int i = 1; i < nall && runi > 0.0; i++)
-    if (atom->radius[i] != runi) runi = 0.0;
   mass_uni = (nall > 0) ? atom->rmass[0] : 0.0;
-  for (int i = 1; i < nall && mass_uni > 0.0; i++)
+  for (int i = 1; i < nall && (runi > 0.0 || mass_uni > 0.0); i++) {
+    if (atom->radius[i] != runi) runi = 0.0;
     if (atom->rmass[i] != mass_uni) mass_uni = 0.0;
+  }
   double tally[3] = {0.0, 0.0, 0.0};
   if (runi > 0.0) {
     if (dim == 2) {
