@@ -232,6 +232,7 @@ def laws_main(
     reference_label: str = "reference",
     reference_settings: str = "current",
     repeat: int = 3,
+    reference_ghost_vel: str = "yes",
 ) -> int:
     """Mca vs bpm/spring/plastic on the same 2D and 3D blocks; print and write the CSV.
 
@@ -268,7 +269,7 @@ def laws_main(
                 if "@" in law:
                     v["plugin"] = str(Path(reference).resolve())
                     # a build before 2026-12-02 asks for LAMMPS's ghost velocities
-                    v["mca_ghost_vel"] = "yes"
+                    v["mca_ghost_vel"] = reference_ghost_vel
                     if reference_settings == "old":
                         # the block deck's mca settings before fix nve/mca (main at 3c1f250)
                         d = _diameter_nm(v)
@@ -345,6 +346,7 @@ def friction_main(
     reference: str | None = None,
     reference_label: str = "reference",
     repeat: int = 3,
+    reference_ghost_vel: str = "yes",
 ) -> int:
     """Mca vs bpm/spring/plastic on the friction deck's system; print and write the CSV.
 
@@ -380,7 +382,7 @@ def friction_main(
                 variables = {k: str(v) for k, v in mca_prepare(params, prep, 1, {}).items()}
                 if "@" in law:
                     variables["mca_plugin"] = str(Path(reference).resolve())
-                    variables["mca_ghost_vel"] = "yes"  # (as in laws_main)
+                    variables["mca_ghost_vel"] = reference_ghost_vel  # (as in laws_main)
 
                 def timed(steps: int, name: str, variables=variables, prep=prep) -> dict:
                     v = dict(
@@ -461,6 +463,13 @@ def main(argv: list[str] | None = None) -> int:
         "(nve/bpm/sphere, 3 d ghost cutoff, newton on), which an older plugin needs",
     )
     ap.add_argument(
+        "--reference-ghost-vel",
+        choices=("yes", "no"),
+        default="yes",
+        help="LAMMPS's ghost velocities for the reference row: yes for a plugin built before "
+        "2026-12-02 (it needs them), no for a later one (it sends them itself)",
+    )
+    ap.add_argument(
         "--repeat",
         type=int,
         default=3,
@@ -486,8 +495,16 @@ def main(argv: list[str] | None = None) -> int:
         common = (args.quick, csv_path, 2.0 if args.quick else args.loop)
         ref = (args.reference_plugin, args.reference_label)
         if args.friction:
-            return friction_main(*common, *ref, repeat=args.repeat)
-        return laws_main(*common, *ref, args.reference_settings, repeat=args.repeat)
+            return friction_main(
+                *common, *ref, repeat=args.repeat, reference_ghost_vel=args.reference_ghost_vel
+            )
+        return laws_main(
+            *common,
+            *ref,
+            args.reference_settings,
+            repeat=args.repeat,
+            reference_ghost_vel=args.reference_ghost_vel,
+        )
 
     from tribolmp.lammps import mca
     from tribolmp.lammps.mca.prepare import prepare as mca_prepare

@@ -38,6 +38,10 @@
 #include "utils.h"
 
 #include <cmath>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+#include <cstdint>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -80,6 +84,7 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   mass_uni = 0.0;
   batch_on = 1;
   prune_on = 1;
+  ghost_rows_read = 1;
   sperm = nullptr;
   maxsperm = 0;
 }
@@ -390,6 +395,12 @@ void PairMCA::rebuild_cache()
     }
   }
   delete[] seen;
+  // does any pair read a ghost's row until the next rebuild?  (one answer for all ranks: the
+  // forward communication is collective)
+  int ghost_local = 0;
+  for (bigint e = 0; e < off && !ghost_local; e++)
+    if (!(eflag[e] & E_LOCAL)) ghost_local = 1;
+  MPI_Allreduce(&ghost_local, &ghost_rows_read, 1, MPI_INT, MPI_MAX, world);
   ncached = nlocal;
   mirrors_pending = 0;
   order_slots();
@@ -539,10 +550,14 @@ void PairMCA::compute(int eflag, int vflag)
   if (nlocal > maxsacc) {
     maxsacc = atom->nmax;
     memory->destroy(sacc);
-    memory->create(sacc, maxsacc, 8, "pair:mca:sacc");
-    MCAMemory::hugepage_hint(sacc[0], sizeof(double) * maxsacc * 8);
+    memory->create(sacc, maxsacc, SR, "pair:mca:sacc");
+    MCAMemory::hugepage_hint(sacc[0], sizeof(double) * maxsacc * SR);
+    // (in 2D the second cache line of a row -- the z force, x and y torque, the zz, xz, yz
+    // sums -- is never added to: cleared once here, not every step)
+    memset(sacc[0], 0, sizeof(double) * maxsacc * SR);
   }
   // (one pass over the automata: the Love-Weber sums are cleared here as well)
+  const int nclear = (dim == 3) ? (int) SR : (int) C_F2;
   for (int i = 0; i < nlocal; i++) {
     double *xoi = xo[i], *si = sacc[i];
     const double *xi = x[i], *vi = v[i], *oi = omega[i], *am = autom[i];
@@ -553,10 +568,15 @@ void PairMCA::compute(int eflag, int vflag)
     }
     xoi[R_XM] = am[ix];
     for (int c = 0; c < 6; c++) xoi[R_DEP + c] = am[FS::A_DEP + c];
-    for (int k = 0; k < 8; k++) si[k] = 0.0;
+    for (int k = 0; k < nclear; k++) si[k] = 0.0;
   }
-  comm->forward_comm(this);
-  if (neighbor->ago == 0 || cacheoff == nullptr) {
+  // The ghosts' rows are read only by pairs with a ghost that is not a periodic image of a
+  // local automaton (those are evaluated from the owner's row, rebuild_cache): on one rank
+  // none, so between rebuilds their communication is skipped (2-3 % of a 3D friction step).
+  // On a rebuild step they are sent: image_shifts reads them, and the new lists may need them
+  const bool rebuild = neighbor->ago == 0 || cacheoff == nullptr;
+  if (rebuild || ghost_rows_read) comm->forward_comm(this);
+  if (rebuild) {
     // the mirror copies of the pair states must be current before the slots are re-mapped
     sync_mirrors();
     image_shifts();
@@ -617,6 +637,17 @@ void PairMCA::compute(int eflag, int vflag)
     lb += am[FS::A_LB];
     wf += am[FS::A_WF];
     double *fi = f[i], *ti = torque[i];
+    if (!restore) {
+      // the pair loop's sums (f and torque were cleared before the pair style: 0 + s is s, the
+      // number the sums into f itself gave)
+      const double *acc = sacc[i];
+      fi[0] += acc[C_F0];
+      fi[1] += acc[C_F1];
+      fi[2] += acc[C_F2];
+      ti[0] += acc[C_T0];
+      ti[1] += acc[C_T1];
+      ti[2] += acc[C_T2];
+    }
     if (advance) {
       for (int c = 0; c < 3; c++) {
         am[FS::A_F + c] = fi[c];
@@ -678,7 +709,6 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   if (inum == 0) return;
   // per-atom arrays through their contiguous storage (one load less per access than the
   // row pointers)
-  double *f = atom->f[0], *torque = atom->torque[0];
   double *radius = atom->radius, *rmass = atom->rmass;
   tagint *tag = atom->tag;
   const double dt = update->dt;
@@ -732,34 +762,35 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
     const double dx = sg * R0, dy = sg * R1, dz = sg * R2;
     auto apply = [&](int q, bool plus, double delx, double dely, double delz) {
       const double rq = UNI ? runi : radius[q];
-      double *fq = f + 3 * q, *tq = torque + 3 * q, *acc = sacc0 + 8 * q;
+      // (force, torque and sums in q's row of sacc: added to atom->f, torque in compute)
+      double *acc = sacc0 + SR * q;
       const double T2 = rq * nxF[2];
       if (plus) {
-        fq[0] += Fsv[0];
-        fq[1] += Fsv[1];
-        tq[2] += T2 + Msv[2];
+        acc[C_F0] += Fsv[0];
+        acc[C_F1] += Fsv[1];
+        acc[C_T2] += T2 + Msv[2];
       } else {
-        fq[0] -= Fsv[0];
-        fq[1] -= Fsv[1];
-        tq[2] += T2 - Msv[2];
+        acc[C_F0] -= Fsv[0];
+        acc[C_F1] -= Fsv[1];
+        acc[C_T2] += T2 - Msv[2];
       }
-      acc[0] += rq * Lv[0];
-      acc[1] += rq * Lv[1];
-      acc[3] += rq * Lv[3];
+      acc[C_L0] += rq * Lv[0];
+      acc[C_L1] += rq * Lv[1];
+      acc[C_L3] += rq * Lv[3];
       if (D3) {
         const double T0 = rq * nxF[0], T1 = rq * nxF[1];
         if (plus) {
-          fq[2] += Fsv[2];
-          tq[0] += T0 + Msv[0];
-          tq[1] += T1 + Msv[1];
+          acc[C_F2] += Fsv[2];
+          acc[C_T0] += T0 + Msv[0];
+          acc[C_T1] += T1 + Msv[1];
         } else {
-          fq[2] -= Fsv[2];
-          tq[0] += T0 - Msv[0];
-          tq[1] += T1 - Msv[1];
+          acc[C_F2] -= Fsv[2];
+          acc[C_T0] += T0 - Msv[0];
+          acc[C_T1] += T1 - Msv[1];
         }
-        acc[2] += rq * Lv[2];
-        acc[4] += rq * Lv[4];
-        acc[5] += rq * Lv[5];
+        acc[C_L2] += rq * Lv[2];
+        acc[C_L4] += rq * Lv[4];
+        acc[C_L5] += rq * Lv[5];
       }
       if (peratom) {
         const double si = i_is_a ? 1.0 : -1.0;
@@ -767,8 +798,8 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         ev_tally_xyz_full(q, 0.0, 0.0, sq * Fv[0], sq * Fv[1], sq * Fv[2], delx, dely, delz);
       }
       if (counted) {
-        acc[6] += 1.0;
-        if (cross) acc[7] += 1.0;
+        acc[C_NL] += 1.0;
+        if (cross) acc[C_NC] += 1.0;
       }
     };
     apply(i, true, -dx, -dy, -dz);
@@ -1480,15 +1511,24 @@ template <int DIM> void PairMCA::automata_update(int i0, int na, bool advance, d
 {
   // (rows of contiguous per-atom arrays)
   double *autom0 = fix->autom[0], *out0 = fix->out[0];
+#if defined(__SSE2__)
+  // (streaming stores of the output rows need 16-byte alignment: glibc's malloc gives it)
+  const bool stream = (reinterpret_cast<uintptr_t>(out0) & 15) == 0;
+#endif
   const double *sacc_ = sacc[0];
   const double *radius = atom->radius;
   AutomBatch &A = *abat;
   for (int q = 0; q < na; q++) {
     const int i = i0 + q;
-    const double *acc = sacc_ + 8 * (bigint) i;
+    const double *acc = sacc_ + SR * (bigint) i;
     const double *am = autom0 + (bigint) i * FS::NAUTO;
     const double iV = (iVuni > 0.0) ? iVuni : 1.0 / automaton_volume(2.0 * radius[i], DIM);
-    for (int c = 0; c < 6; c++) A.acc[c][q] = acc[c];
+    A.acc[0][q] = acc[C_L0];
+    A.acc[1][q] = acc[C_L1];
+    A.acc[2][q] = acc[C_L2];
+    A.acc[3][q] = acc[C_L3];
+    A.acc[4][q] = acc[C_L4];
+    A.acc[5][q] = acc[C_L5];
     A.iV[q] = iV;
     A.ept2[q] = am[FS::A_EPT + 2];
     A.ep[q] = am[FS::A_EEQ];
@@ -1549,7 +1589,7 @@ template <int DIM> void PairMCA::automata_update(int i0, int na, bool advance, d
   for (int q = 0; q < na; q++) {
     const int i = i0 + q;
     double *am = autom0 + (bigint) i * FS::NAUTO;
-    const double *acc = sacc_ + 8 * (bigint) i;
+    const double *acc = sacc_ + SR * (bigint) i;
     if (advance) {
       for (int c = 0; c < 6; c++) {
         am[FS::A_DEP + c] = A.dep[c][q];
@@ -1560,16 +1600,32 @@ template <int DIM> void PairMCA::automata_update(int i0, int na, bool advance, d
       am[FS::A_X] = A.X[q];
     }
     for (int c = 0; c < 6; c++) am[FS::A_SIG + c] = A.sig[c][q];
-    am[FS::A_NL] = acc[6];
-    am[FS::A_NC] = acc[7];
+    am[FS::A_NL] = acc[C_NL];
+    am[FS::A_NC] = acc[C_NC];
     am[FS::A_SEQ] = A.seq[q];
+    // the per-atom output (read only by dumps and computes, every N steps) with streaming
+    // stores: its rows are not read back here, so they need not be loaded into the cache before
+    // they are written nor evict the pair state (rows of 10 doubles: 16-byte aligned pairs)
     double *o = out0 + (bigint) i * FS::NOUT;
+#if defined(__SSE2__)
+    if (stream) {
+      _mm_stream_pd(o, _mm_set_pd(A.sig[1][q], A.sig[0][q]));
+      _mm_stream_pd(o + 2, _mm_set_pd(A.sig[3][q], A.sig[2][q]));
+      _mm_stream_pd(o + 4, _mm_set_pd(A.sig[5][q], A.sig[4][q]));
+      _mm_stream_pd(o + 6, _mm_set_pd(acc[C_NL], am[FS::A_EEQ]));
+      _mm_stream_pd(o + 8, _mm_set_pd(A.seq[q], acc[C_NC]));
+      continue;
+    }
+#endif
     for (int c = 0; c < 6; c++) o[c] = A.sig[c][q];
     o[6] = am[FS::A_EEQ];
-    o[7] = acc[6];
-    o[8] = acc[7];
+    o[7] = acc[C_NL];
+    o[8] = acc[C_NC];
     o[9] = A.seq[q];
   }
+#if defined(__SSE2__)
+  _mm_sfence();    // (the streamed rows are visible to later loads of any thread)
+#endif
 }
 
 /* ---------------------------------------------------------------------- */
@@ -1640,7 +1696,7 @@ void PairMCA::read_restart(FILE *fp)
 
 double PairMCA::memory_usage()
 {
-  return (double) maxflat * (5 * sizeof(int)) + (double) maxsacc * 8 * sizeof(double) +
+  return (double) maxflat * (5 * sizeof(int)) + (double) maxsacc * SR * sizeof(double) +
       (double) maxxo * (PR * sizeof(double) + 3 * sizeof(int)) + (double) maxsperm * sizeof(int) +
       (bat ? sizeof(Batch) : 0) + (abat ? sizeof(AutomBatch) : 0);
 }

@@ -73,7 +73,14 @@ class PairMCA : public Pair {
   int ncached;          // local atoms when the lists were built
   int mirrors_pending;  // 1: the partners' copies of local pairs are behind (sync_mirrors)
   bigint maxflat;
-  double **sacc;        // Love-Weber sums and link counts of local atoms
+  // one row per local automaton of what its pairs add up: force, torque, the Love-Weber sums
+  // (xx yy zz xy xz yz) and the link counts, added to atom->f and torque after the pair loop.
+  // The order puts everything a 2D pair adds in the first cache line (fx fy tz, L xx yy xy, the
+  // two counts), so that a partner's sums cost one line (2D) or two (3D) instead of the three
+  // or four of separate force, torque and sum arrays
+  enum { C_F0 = 0, C_F1 = 1, C_T2 = 2, C_L0 = 3, C_L1 = 4, C_L3 = 5, C_NL = 6, C_NC = 7,
+         C_F2 = 8, C_T0 = 9, C_T1 = 10, C_L2 = 11, C_L4 = 12, C_L5 = 13, SR = 16 };
+  double **sacc;
   int maxsacc;
   int coeffset;
   // one row per local and ghost atom: the owner's x, v, omega, the mean-stress term X and the
@@ -148,6 +155,7 @@ class PairMCA : public Pair {
   int maxecount;        // the largest number of pairs of one automaton (rebuild_cache)
   int batch_on;         // 1: pass 2a computes the common case (pair_style keyword batch)
   int prune_on;         // 1: the evaluation lists leave out pairs that cannot touch (prune)
+  int ghost_rows_read;  // 1: some rank's evaluation lists read a ghost's row (rebuild_cache)
 
   void allocate();
   void ensure_fix();
