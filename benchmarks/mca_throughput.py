@@ -347,6 +347,7 @@ def friction_main(
     reference_label: str = "reference",
     repeat: int = 3,
     reference_ghost_vel: str = "yes",
+    ranks: int = 1,
 ) -> int:
     """Mca vs bpm/spring/plastic on the friction deck's system; print and write the CSV.
 
@@ -354,7 +355,8 @@ def friction_main(
     with ``drive deck``: the slider presses and slides from the built state) is prepared once
     per law, as ``tribolmp mca run`` would, and run for a loop of about ``loop_s`` of LAMMPS
     time (calibrated by a short first run; all laws then run the same number of steps, the
-    largest calibrated one, so that the rows cover the same phase of the run) on 1 rank.
+    largest calibrated one, so that the rows cover the same phase of the run) on ``ranks`` MPI
+    ranks (1 or 2; the rate is automaton-steps per second of wall time).
     Unlike the block, this deck asks for the global virial on every step (its ``fix ave/time
     1 N N``), and its bodies are bounded by free surfaces and rigid layers.
     """
@@ -392,7 +394,7 @@ def friction_main(
                         thermo_every=str(steps),
                         restart_every=str(10 * steps),
                     )
-                    return _run("python-1", v, prep / name)
+                    return _run(f"python-{ranks}", v, prep / name)
 
                 cal = timed(300, "cal")
                 runs[law] = (timed, max(400, int(loop_s * cal["rate"] / cal["atoms"])))
@@ -414,6 +416,7 @@ def friction_main(
                         if law.startswith("mca")
                         else "",
                         "automata": r["atoms"],
+                        "ranks": r["ranks"],
                         "steps": r["steps"],
                         "loop_s": r["loop_s"],
                         "repeats": r["repeats"],
@@ -470,6 +473,13 @@ def main(argv: list[str] | None = None) -> int:
         "2026-12-02 (it needs them), no for a later one (it sends them itself)",
     )
     ap.add_argument(
+        "--ranks",
+        type=int,
+        choices=(1, 2),
+        default=1,
+        help="MPI ranks of each run of the friction comparison (--friction; default 1)",
+    )
+    ap.add_argument(
         "--repeat",
         type=int,
         default=3,
@@ -496,7 +506,11 @@ def main(argv: list[str] | None = None) -> int:
         ref = (args.reference_plugin, args.reference_label)
         if args.friction:
             return friction_main(
-                *common, *ref, repeat=args.repeat, reference_ghost_vel=args.reference_ghost_vel
+                *common,
+                *ref,
+                repeat=args.repeat,
+                reference_ghost_vel=args.reference_ghost_vel,
+                ranks=args.ranks,
             )
         return laws_main(
             *common,
