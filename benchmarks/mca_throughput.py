@@ -149,6 +149,24 @@ LAW_SYSTEMS = ((2, 40), (3, 8))
 LAW_SYSTEMS_QUICK = ((2, 16), (3, 4))
 
 
+def _blocks(text: str) -> tuple[tuple[int, int], ...]:
+    """Parse ``--blocks`` (``DIM:REPEATS,...``); one line naming the field on a bad value."""
+    out = []
+    for item in text.split(","):
+        try:
+            dim, n = (int(x) for x in item.split(":"))
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"--blocks: expected DIM:REPEATS,... (e.g. 2:40,3:17), got {item!r}"
+            ) from None
+        if dim not in (2, 3) or not 2 <= n <= 200:
+            raise argparse.ArgumentTypeError(
+                f"--blocks: DIM must be 2 or 3 and REPEATS 2-200, got {item!r}"
+            )
+        out.append((dim, n))
+    return tuple(out)
+
+
 def _block_worker(out: str) -> int:
     from tribolmp.lammps.decks import deck_path
     from tribolmp.lammps.session import LammpsSession
@@ -233,11 +251,14 @@ def laws_main(
     reference_settings: str = "current",
     repeat: int = 3,
     reference_ghost_vel: str = "yes",
+    systems: tuple[tuple[int, int], ...] | None = None,
 ) -> int:
     """Mca vs bpm/spring/plastic on the same 2D and 3D blocks; print and write the CSV.
 
     ``reference``: path of another build of the mca plugin (e.g. of an older commit), run on
     the same blocks in the same loop, so that before/after ratios share the machine's load.
+    ``systems``: (dim, lattice repeats) of the blocks (default ``LAW_SYSTEMS``; a 3D block of
+    17 repeats has 19 652 automata, the size of the default preset's friction system).
     """
     from tribolmp.lammps.material_test import block_setup
 
@@ -254,7 +275,7 @@ def laws_main(
         f"{'cpu%':>5} {'ratio/cpu-s':>11} {'load':>5}"
     )
     with tempfile.TemporaryDirectory(prefix="mca_laws_") as tmp:
-        for dim, n in LAW_SYSTEMS_QUICK if quick else LAW_SYSTEMS:
+        for dim, n in systems or (LAW_SYSTEMS_QUICK if quick else LAW_SYSTEMS):
             cals = {}
             for law in laws:
                 out = Path(tmp) / f"{dim}d_{re.sub(r'[/@+]', '_', law)}"
@@ -473,6 +494,13 @@ def main(argv: list[str] | None = None) -> int:
         "2026-12-02 (it needs them), no for a later one (it sends them itself)",
     )
     ap.add_argument(
+        "--blocks",
+        type=_blocks,
+        default=None,
+        help="blocks of the law comparison as DIM:REPEATS,... (default 2:40,3:8: 1 600 and "
+        "2 048 automata; 3:17 is 19 652)",
+    )
+    ap.add_argument(
         "--ranks",
         type=int,
         choices=(1, 2),
@@ -518,6 +546,7 @@ def main(argv: list[str] | None = None) -> int:
             args.reference_settings,
             repeat=args.repeat,
             reference_ghost_vel=args.reference_ghost_vel,
+            systems=args.blocks,
         )
 
     from tribolmp.lammps import mca
