@@ -525,6 +525,11 @@ def main(argv: list[str] | None = None) -> int:
         return _worker(args.worker)
     if args.block_worker:
         return _block_worker(args.block_worker)
+    # (each option belongs to one comparison: refuse it elsewhere rather than ignore it)
+    if args.blocks and args.friction:
+        ap.error("--blocks: the blocks of the law comparison; not with --friction")
+    if args.ranks != 1 and not args.friction:
+        ap.error("--ranks: the friction comparison's ranks (with --friction); expected 1 here")
     if args.friction or not args.interfaces:
         # the law comparisons: on the friction system, or on the block
         kind = "friction" if args.friction else "laws"
