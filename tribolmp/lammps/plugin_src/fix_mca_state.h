@@ -79,7 +79,10 @@ class FixMCAState : public Fix {
   // can be read: before atoms move in the arrays (exchange, sort, deletion), before a restart
   // is written, and before pair mca re-maps its slots after a neighbour-list rebuild.  Between
   // these points nothing reads it (the pair is not evaluated from the partner's side).  Pair
-  // mca knows the pending pairs (its evaluation lists); this asks it to write them.
+  // mca knows the pending pairs (its evaluation lists); this asks it to write them.  The same
+  // call writes back the live pair states, which pair mca keeps in its own array in the order
+  // of its evaluation lists between two rebuilds (PairMCA::psc): until then the slots of the
+  // evaluating automata are behind as well.
   void sync_mirrors();
   int per_atom() const { return maxpartner * NSLOT + NAUTO; }
 

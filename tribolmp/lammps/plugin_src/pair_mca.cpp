@@ -48,6 +48,8 @@ using namespace LAMMPS_NS;
 using namespace MCALaw;
 
 using FS = FixMCAState;
+// (psc entries leave out the tag, the first value of a slot: pair_mca.h)
+static_assert(FixMCAState::S_TAG == 0, "psc entries hold a slot without its first value");
 
 PairMCA::PairMCA(LAMMPS *lmp) :
     Pair(lmp), link_init(1), attach_type(0), link_tol(0.05), cutfac(1.25), maxrad(0.0), fix(nullptr),
@@ -72,6 +74,9 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   eflag = nullptr;
   ncached = 0;
   mirrors_pending = 0;
+  psc = pscbase = nullptr;
+  maxpsc = 0;
+  psc_pending = 0;
   maxflat = 0;
   sacc = nullptr;
   maxsacc = 0;
@@ -95,6 +100,7 @@ PairMCA::~PairMCA()
   memory->destroy(cacheflat);
   memory->destroy(mirrorflat);
   memory->destroy(eimg);
+  memory->destroy(pscbase);
   memory->destroy(cacheoff);
   memory->destroy(ecount);
   memory->destroy(ej);
@@ -404,13 +410,31 @@ void PairMCA::rebuild_cache()
   ncached = nlocal;
   mirrors_pending = 0;
   order_slots();
+  // the pair states of the lists' entries into their dense copy (psc), in the lists' order
+  if (off * NP > maxpsc) {
+    maxpsc = maxflat * NP;
+    memory->destroy(pscbase);
+    memory->create(pscbase, maxpsc + 1, "pair:mca:psc");
+    MCAMemory::hugepage_hint(pscbase, sizeof(double) * (maxpsc + 1));
+    psc = pscbase + 1;
+  }
+  for (int i = 0; i < nlocal; i++) {
+    const bigint eoff = cacheoff[i];
+    if (eoff < 0) continue;
+    for (bigint e = eoff; e < eoff + ecount[i]; e++) {
+      double *d = psc + e * NP;
+      if (cacheflat[e] >= 0) memcpy(d, fix->slot(i, cacheflat[e]) + 1, sizeof(double) * NP);
+      else memset(d, 0, sizeof(double) * NP);
+    }
+  }
+  psc_pending = 0;
 }
 
 /* Each automaton's slots in the order its evaluation list reads them, the slots of the pairs it
    evaluates first, then those it holds as the partner's copy (mirrors), then the free ones.
-   The pair loop then reads one contiguous run of each automaton's row per step instead of
-   slots scattered over the whole row (the 3D pair state exceeds the caches: 20 slots of 96
-   bytes per automaton), and the prefetch of the next automaton covers just that run.  Only
+   The copies between the rows and psc (rebuild_cache, sync_mirrors) then read and write one
+   contiguous run of each automaton's row instead of slots scattered over the whole row (20
+   slots of 96 bytes per automaton in 3D); between two rebuilds the step reads only psc.  Only
    the slot indices change: the sums are formed in the order of the evaluation lists, and a
    slot is found by its partner's tag, so no number changes (tests/mca/test_law_batch.py,
    test_law_parallel.py).  Called at the end of rebuild_cache, when the mirror copies are
@@ -464,23 +488,33 @@ void PairMCA::order_slots()
   }
 }
 
-/* pending mirror copies (fix_mca_state.h): a pair of two local automata is evaluated on the
-   copy of the one with the smaller ID; j's copy is i's with the partner tag of j.  The pairs
-   with a pending copy are those of the evaluation lists that hold a state on both sides. */
+/* pending copies (fix_mca_state.h), called before anything but the pair loop reads the slot
+   rows (atoms move in the arrays, a restart is written, the lists are rebuilt): the live
+   states of psc go back to the evaluating automata's rows, and a pair of two local automata,
+   evaluated on the copy of the one with the smaller ID, to j's copy as well (i's with the
+   partner tag of j).  The pairs with a pending mirror copy are those of the evaluation lists
+   that hold a state on both sides.  Leaving out the write-back of psc fails the restart, MPI
+   and momentum tests of tests/mca/test_law_parallel.py. */
 
 void PairMCA::sync_mirrors()
 {
-  if (!mirrors_pending || cacheoff == nullptr) return;
+  if ((!mirrors_pending && !psc_pending) || cacheoff == nullptr) return;
+  const bool mirrors = mirrors_pending, own = psc_pending;
   mirrors_pending = 0;
+  psc_pending = 0;
   tagint *tag = atom->tag;
   // (the atoms of the last rebuild: an atom added since has no list)
   for (int i = 0; i < ncached; i++) {
     const bigint off = cacheoff[i];
     if (off < 0) continue;
-    for (int e = off; e < off + ecount[i]; e++) {
-      if (!(eflag[e] & E_LOCAL) || cacheflat[e] < 0 || mirrorflat[e] < 0) continue;
+    for (bigint e = off; e < off + ecount[i]; e++) {
+      if (cacheflat[e] < 0) continue;
+      // (the live state, all but the tag: the row's slot keeps its partner's)
+      const double *src = psc + e * NP;
+      if (own) memcpy(fix->slot(i, cacheflat[e]) + 1, src, sizeof(double) * NP);
+      if (!mirrors || !(eflag[e] & E_LOCAL) || mirrorflat[e] < 0) continue;
       double *sj = fix->slot(ej[e], mirrorflat[e]);
-      memcpy(sj, fix->slot(i, cacheflat[e]), sizeof(double) * FS::NSLOT);
+      memcpy(sj + 1, src, sizeof(double) * NP);
       sj[FS::S_TAG] = (double) tag[i];
     }
   }
@@ -842,19 +876,9 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
     const int jnum = ecount[i];
     const int *ej_i = &ej[eoff], *ef_i = &eflag[eoff];
     int *cache_i = &cacheflat[eoff];
-    double *slots_i = slots + (bigint) i * slotrow;
-    if (jj0 == 0 && ii + 1 < inum) {
-      // the slots of the next automaton (the loop over automata is the memory stream that
-      // the hardware prefetcher does not see: rows are maxpartner slots apart).  Prefetching
-      // further ahead, or the partners' rows as well, made no difference beyond the noise
-      // (3D block of 19 652 automata, 6 interleaved repetitions)
-      const int q = ilist[ii + 1];
-      const double *nxt = slots + (bigint) q * slotrow;
-      // (order_slots: the slots it reads are the first ones of its row, at most one per pair)
-      const int nnx = ecount[q];
-      const int npf = (nnx < fix->maxpartner ? nnx : fix->maxpartner) * FS::NSLOT;
-      for (int b = 0; b < npf; b += 8) __builtin_prefetch(nxt + b);
-    }
+    // (the pair states are read from psc in the lists' order: one stream that the hardware
+    // prefetcher follows)
+    const double *psc_i = psc + eoff * NP - 1;
 
     // pass 1a: the relative position and velocities of every pair of i that is evaluated
     // (a pair with no state that does not touch is left out), its state and its partners'
@@ -932,7 +956,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       B.jj[ip] = jj;
       B.e[ip] = eoff + jj;
       B.ef[ip] = ef;
-      B.soff[ip] = (bigint) i * slotrow + k1 * FS::NSLOT;
+      B.soff[ip] = (eoff + jj) * NP - 1;    // (the entry's slot in psc)
       B.j[ip] = j;
       B.R0[ip] = R0;
       B.R1[ip] = R1;
@@ -950,7 +974,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       B.hasxi[ip] = (ADV && k1 >= 0) ? 1.0 : 0.0;
       // inputs of pass 2a (the common case: an existing link, advanced)
       if (ADV && k1 >= 0) {
-        const double *sl = &slots_i[k1 * FS::NSLOT];
+        const double *sl = &psc_i[jj * NP];
         const double *oa = xo0 + PR * a + R_OM, *ob = xo0 + PR * b + R_OM;
         const double *pa = xo0 + PR * a + R_XM, *pb = xo0 + PR * b + R_XM;
         B.kind[ip] = sl[FS::S_KIND];
@@ -1024,7 +1048,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         const bigint e = B.e[ip];
         const int ef = B.ef[ip];
         const bool jlocal = ef & E_LOCAL;
-        double *s = slots + B.soff[ip];
+        double *s = psc + B.soff[ip];
         if (jlocal && mirrorflat[e] < 0) {
           // (as in the general path below)
           const int kj = find_slot(j, (double) tag[i]);
@@ -1085,7 +1109,9 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
           const int kj = find_slot(j, itag);
           mirror_i[jj] = (kj >= 0) ? kj : new_slot(j, itag);
         }
-        double *s = slots_i + k * FS::NSLOT;
+        // (the new slot reserves k in i's row, its tag set; its state lives in psc)
+        double *s = psc + (eoff + jj) * NP - 1;
+        memcpy(s + 1, slots_i + k * FS::NSLOT + 1, sizeof(double) * NP);
         s[FS::S_KIND] = mklink ? ikind : FS::CONTACT;
         s[FS::S_RP + 0] = R0;
         s[FS::S_RP + 1] = R1;
@@ -1093,7 +1119,9 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         // an initial link is stress-free at its current length
         if (mklink) s[FS::S_PN] = (std::sqrt(rsq) - dbar) / dbar;
       }
-      double *s = slots_i + k * FS::NSLOT;
+      double *s = psc + (eoff + jj) * NP - 1;
+      // (a slot that is forgotten frees its place in i's row too)
+      double *srow = slots_i + k * FS::NSLOT;
       if (jlocal && mirror_i[jj] < 0) {
         // j lost its copy (it held the pair as a ghost partner elsewhere): i's copy, which
         // was evaluated, is the state; j gets it back at the end of this pair
@@ -1125,7 +1153,8 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       };
 
       if (kind == FS::CONTACT && eraw >= 0.0) {    // contact opened: forget it
-        memset(s, 0, sizeof(double) * FS::NSLOT);
+        memset(s + 1, 0, sizeof(double) * NP);
+        memset(srow, 0, sizeof(double) * FS::NSLOT);
         cache_i[jj] = -1;
         if (sj) {
           memset(sj, 0, sizeof(double) * FS::NSLOT);
@@ -1238,7 +1267,8 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
           pn = 0.0;
           for (int c = 0; c < 3; c++) s[FS::S_TH + c] = 0.0;
           if (eraw >= 0.0) {
-            memset(s, 0, sizeof(double) * FS::NSLOT);
+            memset(s + 1, 0, sizeof(double) * NP);
+            memset(srow, 0, sizeof(double) * FS::NSLOT);
             cache_i[jj] = -1;
             if (sj) {
               memset(sj, 0, sizeof(double) * FS::NSLOT);
@@ -1315,6 +1345,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   }
   }
   if (any_mirror) mirrors_pending = 1;
+  psc_pending = 1;
   if (vglobal)
     for (int c = 0; c < 6; c++) virial[c] += vir[c];
   tally[0] = tally_links;
@@ -1696,7 +1727,8 @@ void PairMCA::read_restart(FILE *fp)
 
 double PairMCA::memory_usage()
 {
-  return (double) maxflat * (5 * sizeof(int)) + (double) maxsacc * SR * sizeof(double) +
+  return (double) maxflat * (5 * sizeof(int)) + (double) maxpsc * sizeof(double) +
+      (double) maxsacc * SR * sizeof(double) +
       (double) maxxo * (PR * sizeof(double) + 3 * sizeof(int)) + (double) maxsperm * sizeof(int) +
       (bat ? sizeof(Batch) : 0) + (abat ? sizeof(AutomBatch) : 0);
 }

@@ -72,6 +72,18 @@ class PairMCA : public Pair {
   int *ecount;          // number of atom i's pairs
   int ncached;          // local atoms when the lists were built
   int mirrors_pending;  // 1: the partners' copies of local pairs are behind (sync_mirrors)
+  // the live pair states between two list rebuilds: one slot (fix mca/state's layout)
+  // per entry of the evaluation lists, in their order, filled from the automata's slot
+  // rows at each rebuild and written back to them before anything else reads the rows
+  // (sync_mirrors).  The pair loop then reads and writes one dense stream in its own order
+  // instead of slots spread over rows of maxpartner slots
+  // (an entry holds a slot without its partner tag, which the step never reads: NP doubles;
+  // the slot's index k is entry[k - 1], so that the slot layout's names apply.  psc points one
+  // double past the allocation's start, pscbase, for the first entry's index -1)
+  enum { NP = 11 };
+  double *psc, *pscbase;
+  bigint maxpsc;
+  int psc_pending;      // 1: psc is ahead of the slot rows
   bigint maxflat;
   // one row per local automaton of what its pairs add up: force, torque, the Love-Weber sums
   // (xx yy zz xy xz yz) and the link counts, added to atom->f and torque after the pair loop.
