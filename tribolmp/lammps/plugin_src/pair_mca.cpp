@@ -411,7 +411,8 @@ void PairMCA::rebuild_cache()
   mirrors_pending = 0;
   order_slots();
   // the pair states of the lists' entries into their dense copy (psc), in the lists' order
-  if (off * NP > maxpsc) {
+  // (allocated even for empty lists, so that psc is never a null pointer the loop offsets)
+  if (!pscbase || off * NP > maxpsc) {
     maxpsc = maxflat * NP;
     memory->destroy(pscbase);
     memory->create(pscbase, maxpsc + 1, "pair:mca:psc");
