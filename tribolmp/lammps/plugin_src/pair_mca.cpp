@@ -1365,7 +1365,7 @@ template <int DIM, bool UNI> void PairMCA::batch_geometry(int n, double runi)
   constexpr bool D3 = (DIM == 3);
   Batch &B = *bat;
   const double idbar_u = 1.0 / (runi + runi);
-  for (int p = 0; p < n; p++) {
+  for (int p = 0; p < n; p++) {    // vectorised x4 (tests/mca/test_law_vectorised.py)
     const double r = std::sqrt(B.rsq[p]);
     const double ir = 1.0 / r;
     const double n0 = B.R0[p] * ir, n1 = B.R1[p] * ir, n2 = D3 ? B.R2[p] * ir : 0.0;
@@ -1414,7 +1414,7 @@ template <int DIM, bool UNI> void PairMCA::batch_common(int n, double runi)
   const double dbar_u = runi + runi;
   const double A_u = pair_area(dbar_u, DIM), kr_u = rotational_stiffness(mat, A_u, dbar_u);
   const double LINK = FS::LINK, WELD = FS::WELD, ATTACH = FS::ATTACH;
-  for (int p = 0; p < n; p++) {
+  for (int p = 0; p < n; p++) {    // vectorised x4 (tests/mca/test_law_vectorised.py)
     const double kind = B.kind[p];
     const double n0 = B.n0[p], n1 = B.n1[p], n2 = D3 ? B.n2[p] : 0.0;
     const double ra = UNI ? runi : B.ra[p], rb = UNI ? runi : B.rb[p];
@@ -1568,7 +1568,7 @@ template <int DIM> void PairMCA::automata_update(int i0, int na, bool advance, d
   // the stress (rule 7 in mca_law.h: radial_return, as selects; the same expressions)
   const double G = mat.G, alpha = mat.alpha, H = mat.H, sy0 = mat.sy, s0 = mat.s0;
   const double inv_3GH = mat.inv_3GH, inv_3G = mat.inv_3G;
-  for (int q = 0; q < na; q++) {
+  for (int q = 0; q < na; q++) {    // vectorised x2 (tests/mca/test_law_vectorised.py)
     const double iV = A.iV[q];
     double sig0, sig1, sig2, sig3, sig4, sig5, X;
     if (DIM == 2) {
