@@ -80,6 +80,7 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   maxflat = 0;
   sacc = nullptr;
   maxsacc = 0;
+  sacc_dirty = false;
   xo = nullptr;
   gimg = nullptr;
   maxxo = 0;
@@ -560,8 +561,7 @@ void PairMCA::compute(int eflag, int vflag)
   ev_init(eflag, vflag);
   if (!fix) ensure_fix();
 
-  double **x = atom->x, **v = atom->v, **f = atom->f;
-  double **torque = atom->torque, **omega = atom->omega;
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
   const int nlocal = atom->nlocal;
   const int dim = domain->dimension;
   const bool advance = (double) update->ntimestep > fix->last_commit;
@@ -590,11 +590,16 @@ void PairMCA::compute(int eflag, int vflag)
     // (in 2D the second cache line of a row -- the z force, x and y torque, the zz, xz, yz
     // sums -- is never added to: cleared once here, not every step)
     memset(sacc[0], 0, sizeof(double) * maxsacc * SR);
+    sacc_dirty = false;
   }
-  // (one pass over the automata: the Love-Weber sums are cleared here as well)
-  const int nclear = (dim == 3) ? (int) SR : (int) C_F2;
+  // The Love-Weber sums are cleared where they are last read (automata_update, while their
+  // rows are in the cache), not here: a pass over them before the pair loop brought every row in from
+  // memory once more.  A step that did not reach that point (an error caught by the caller)
+  // leaves them dirty: cleared here in one pass
+  if (sacc_dirty) memset(sacc[0], 0, sizeof(double) * maxsacc * SR);
+  sacc_dirty = true;
   for (int i = 0; i < nlocal; i++) {
-    double *xoi = xo[i], *si = sacc[i];
+    double *xoi = xo[i];
     const double *xi = x[i], *vi = v[i], *oi = omega[i], *am = autom[i];
     for (int c = 0; c < 3; c++) {
       xoi[R_X + c] = xi[c];
@@ -603,7 +608,6 @@ void PairMCA::compute(int eflag, int vflag)
     }
     xoi[R_XM] = am[ix];
     for (int c = 0; c < 6; c++) xoi[R_DEP + c] = am[FS::A_DEP + c];
-    for (int k = 0; k < nclear; k++) si[k] = 0.0;
   }
   // The ghosts' rows are read only by pairs with a ghost that is not a periodic image of a
   // local automaton (those are evaluated from the owner's row, rebuild_cache): on one rank
@@ -654,47 +658,19 @@ void PairMCA::compute(int eflag, int vflag)
   // run command) returns them unchanged.  Recomputing them would use full-step velocities where
   // the committed step used half-step ones (velocity Verlet), so damping and viscosity would
   // differ by one step
-  double cf = 0.0, cb = 0.0, lb = 0.0, wf = 0.0;
   if (!abat) abat = new AutomBatch();
   const bool restore = !advance && fix->last_commit >= 0.0;
   // (the stress is the Love-Weber sum times 1/V)
   const double iVuni = (runi > 0.0) ? 1.0 / automaton_volume(2.0 * runi, dim) : 0.0;
   // (in batches of automata: the stress update of a batch in vectorised loops, automata_update)
-  for (int i = 0; i < nlocal; i++) {
-    if (i % NABATCH == 0) {
-      const int na = (nlocal - i < NABATCH) ? nlocal - i : NABATCH;
-      if (dim == 2) automata_update<2>(i, na, advance, iVuni);
-      else automata_update<3>(i, na, advance, iVuni);
-    }
-    double *am = autom[i];
-    cf += am[FS::A_CF];
-    cb += am[FS::A_CB];
-    lb += am[FS::A_LB];
-    wf += am[FS::A_WF];
-    double *fi = f[i], *ti = torque[i];
-    if (!restore) {
-      // the pair loop's sums (f and torque were cleared before the pair style: 0 + s is s, the
-      // number the sums into f itself gave)
-      const double *acc = sacc[i];
-      fi[0] += acc[C_F0];
-      fi[1] += acc[C_F1];
-      fi[2] += acc[C_F2];
-      ti[0] += acc[C_T0];
-      ti[1] += acc[C_T1];
-      ti[2] += acc[C_T2];
-    }
-    if (advance) {
-      for (int c = 0; c < 3; c++) {
-        am[FS::A_F + c] = fi[c];
-        am[FS::A_T + c] = ti[c];
-      }
-    } else if (restore) {
-      for (int c = 0; c < 3; c++) {
-        fi[c] = am[FS::A_F + c];
-        ti[c] = am[FS::A_T + c];
-      }
-    }
+  double sums[4] = {0.0, 0.0, 0.0, 0.0};    // (counters cf cb lb wf, in the automata's order)
+  for (int i = 0; i < nlocal; i += NABATCH) {
+    const int na = (nlocal - i < NABATCH) ? nlocal - i : NABATCH;
+    if (dim == 2) automata_update<2>(i, na, advance, restore, iVuni, sums);
+    else automata_update<3>(i, na, advance, restore, iVuni, sums);
   }
+  const double cf = sums[0], cb = sums[1], lb = sums[2], wf = sums[3];
+  sacc_dirty = false;
   if (init_links) fix->initialized = 1;
   if (advance) fix->last_commit = (double) update->ntimestep;
 
@@ -961,13 +937,15 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       B.j[ip] = j;
       B.R0[ip] = R0;
       B.R1[ip] = R1;
-      B.R2[ip] = R2;
       B.Va0[ip] = Va0;
       B.Va1[ip] = Va1;
-      B.Va2[ip] = Va2;
       B.Vb0[ip] = Vb0;
       B.Vb1[ip] = Vb1;
-      B.Vb2[ip] = Vb2;
+      if (D3) {    // (2D: +0, never stored; Batch::get gives the general path its zeros)
+        B.R2[ip] = R2;
+        B.Va2[ip] = Va2;
+        B.Vb2[ip] = Vb2;
+      }
       B.rsq[ip] = rsq;
       if (!UNI) B.dbar[ip] = dbar;
       // (a pair without a slot gets one in pass 2b with xi = 0: no projection.  Only this
@@ -1079,7 +1057,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         continue;
       }
       PairPre P;
-      B.get(ip, P);
+      B.get<D3>(ip, P);
       const int i = P.i;
       const double itag = (double) tag[i];
       const bigint eoff = cacheoff[i];
@@ -1536,10 +1514,18 @@ template <int DIM, bool UNI> void PairMCA::batch_common(int n, double runi)
    return (mca_law.h, rule 7).  2D is plane strain: sigma_zz follows from the
    in-plane state, sigma_zz = alpha X - 2G eps_p_zz with X = in-plane mean -
    G eps_p_zz (the combination for which the lattice reproduces plane-strain
-   Hooke's law with plastic strain).
+   Hooke's law with plastic strain).  Then, automaton by automaton in one pass
+   over its rows: the counters into sums (cf cb lb wf, in the automata's
+   order), the pair loop's force and torque sums into f and torque, the
+   committed step's forces (stored, or restored by a re-evaluation), the
+   state and the per-atom output, and the row of sums cleared for the next
+   step (its last reader; was a separate pass before the pair loop, which
+   brought every row in from memory once more).
 ------------------------------------------------------------------------- */
 
-template <int DIM> void PairMCA::automata_update(int i0, int na, bool advance, double iVuni)
+template <int DIM>
+void PairMCA::automata_update(int i0, int na, bool advance, bool restore, double iVuni,
+                              double *sums)
 {
   // (rows of contiguous per-atom arrays)
   double *autom0 = fix->autom[0], *out0 = fix->out[0];
@@ -1547,7 +1533,7 @@ template <int DIM> void PairMCA::automata_update(int i0, int na, bool advance, d
   // (streaming stores of the output rows need 16-byte alignment: glibc's malloc gives it)
   const bool stream = (reinterpret_cast<uintptr_t>(out0) & 15) == 0;
 #endif
-  const double *sacc_ = sacc[0];
+  double *sacc_ = sacc[0];
   const double *radius = atom->radius;
   AutomBatch &A = *abat;
   for (int q = 0; q < na; q++) {
@@ -1618,10 +1604,41 @@ template <int DIM> void PairMCA::automata_update(int i0, int na, bool advance, d
     A.sig[4][q] = elastic ? sig4 : f * sig4 + 0.0;
     A.sig[5][q] = elastic ? sig5 : f * sig5 + 0.0;
   }
+  double **f = atom->f, **torque = atom->torque;
+  const int nclear = (DIM == 3) ? (int) SR : (int) C_F2;
   for (int q = 0; q < na; q++) {
     const int i = i0 + q;
     double *am = autom0 + (bigint) i * FS::NAUTO;
-    const double *acc = sacc_ + SR * (bigint) i;
+    double *acc = sacc_ + SR * (bigint) i;
+    // the counters, the pair loop's sums into f and torque (cleared before the pair style:
+    // 0 + s is s, the number the sums into f itself gave; in 2D the z force and the x, y
+    // torques are +0 and their sums never touched), the committed step's pair forces
+    sums[0] += am[FS::A_CF];
+    sums[1] += am[FS::A_CB];
+    sums[2] += am[FS::A_LB];
+    sums[3] += am[FS::A_WF];
+    double *fi = f[i], *ti = torque[i];
+    if (!restore) {
+      fi[0] += acc[C_F0];
+      fi[1] += acc[C_F1];
+      ti[2] += acc[C_T2];
+      if (DIM == 3) {
+        fi[2] += acc[C_F2];
+        ti[0] += acc[C_T0];
+        ti[1] += acc[C_T1];
+      }
+    }
+    if (advance) {
+      for (int c = 0; c < 3; c++) {
+        am[FS::A_F + c] = fi[c];
+        am[FS::A_T + c] = ti[c];
+      }
+    } else if (restore) {
+      for (int c = 0; c < 3; c++) {
+        fi[c] = am[FS::A_F + c];
+        ti[c] = am[FS::A_T + c];
+      }
+    }
     if (advance) {
       for (int c = 0; c < 6; c++) {
         am[FS::A_DEP + c] = A.dep[c][q];
@@ -1646,14 +1663,17 @@ template <int DIM> void PairMCA::automata_update(int i0, int na, bool advance, d
       _mm_stream_pd(o + 4, _mm_set_pd(A.sig[5][q], A.sig[4][q]));
       _mm_stream_pd(o + 6, _mm_set_pd(acc[C_NL], am[FS::A_EEQ]));
       _mm_stream_pd(o + 8, _mm_set_pd(A.seq[q], acc[C_NC]));
-      continue;
-    }
+    } else
 #endif
-    for (int c = 0; c < 6; c++) o[c] = A.sig[c][q];
-    o[6] = am[FS::A_EEQ];
-    o[7] = acc[C_NL];
-    o[8] = acc[C_NC];
-    o[9] = A.seq[q];
+    {
+      for (int c = 0; c < 6; c++) o[c] = A.sig[c][q];
+      o[6] = am[FS::A_EEQ];
+      o[7] = acc[C_NL];
+      o[8] = acc[C_NC];
+      o[9] = A.seq[q];
+    }
+    // (the row's last reader)
+    for (int k = 0; k < nclear; k++) acc[k] = 0.0;
   }
 #if defined(__SSE2__)
   _mm_sfence();    // (the streamed rows are visible to later loads of any thread)

@@ -94,6 +94,7 @@ class PairMCA : public Pair {
          C_F2 = 8, C_T0 = 9, C_T1 = 10, C_L2 = 11, C_L4 = 12, C_L5 = 13, SR = 16 };
   double **sacc;
   int maxsacc;
+  bool sacc_dirty;    // a step's sums were not cleared (it did not finish): clear them all
   int coeffset;
   // one row per local and ghost atom: the owner's x, v, omega, the mean-stress term X and the
   // pending plastic strain increment (xx yy zz xy xz yz); PR doubles = two cache lines
@@ -129,7 +130,8 @@ class PairMCA : public Pair {
         F2[NBCAP], nxF0[NBCAP], nxF1[NBCAP], nxF2[NBCAP], L0[NBCAP], L1[NBCAP], L2[NBCAP],
         L3[NBCAP], L4[NBCAP], L5[NBCAP], Fs0[NBCAP], Fs1[NBCAP], Fs2[NBCAP], Ms0[NBCAP],
         Ms1[NBCAP], Ms2[NBCAP];
-    void get(int p, PairPre &P) const
+    // (D3 false: the z components were not stored, and are +0 in 2D)
+    template <bool D3> void get(int p, PairPre &P) const
     {
       P.i = i[p];
       P.jj = jj[p];
@@ -137,13 +139,13 @@ class PairMCA : public Pair {
       P.proj = proj[p] != 0.0;
       P.R0 = R0[p];
       P.R1 = R1[p];
-      P.R2 = R2[p];
+      P.R2 = D3 ? R2[p] : 0.0;
       P.Va0 = Va0[p];
       P.Va1 = Va1[p];
-      P.Va2 = Va2[p];
+      P.Va2 = D3 ? Va2[p] : 0.0;
       P.Vb0 = Vb0[p];
       P.Vb1 = Vb1[p];
-      P.Vb2 = Vb2[p];
+      P.Vb2 = D3 ? Vb2[p] : 0.0;
       P.rsq = rsq[p];
       P.r = r[p];
       P.n0 = n0[p];
@@ -190,7 +192,8 @@ class PairMCA : public Pair {
   int find_slot(int i, double jtag);
   int new_slot(int i, double jtag);
   int initial_link_kind(int i, tagint jtag, double rsq, double dbar, bool same_body);
-  template <int DIM> void automata_update(int i0, int na, bool advance, double iVuni);
+  template <int DIM>
+  void automata_update(int i0, int na, bool advance, bool restore, double iVuni, double *sums);
   template <int DIM, bool ADV, bool UNI> void pair_loop(bool init_links, double *tally, double runi);
   template <int DIM, bool UNI> void batch_common(int n, double runi);
   template <int DIM, bool UNI> void batch_geometry(int n, double runi);
