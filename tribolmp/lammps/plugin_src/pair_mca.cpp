@@ -937,14 +937,12 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       B.j[ip] = j;
       B.R0[ip] = R0;
       B.R1[ip] = R1;
-      B.Va0[ip] = Va0;
-      B.Va1[ip] = Va1;
-      B.Vb0[ip] = Vb0;
-      B.Vb1[ip] = Vb1;
+      // (the law reads the velocities only as b's relative to a's: vr = (V_b - V_a) - ...)
+      B.dV0[ip] = Vb0 - Va0;
+      B.dV1[ip] = Vb1 - Va1;
       if (D3) {    // (2D: +0, never stored; Batch::get gives the general path its zeros)
         B.R2[ip] = R2;
-        B.Va2[ip] = Va2;
-        B.Vb2[ip] = Vb2;
+        B.dV2[ip] = Vb2 - Va2;
       }
       B.rsq[ip] = rsq;
       if (!UNI) B.dbar[ip] = dbar;
@@ -1073,7 +1071,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       const bool i_is_a = ef & E_IA;
       const int a = i_is_a ? i : j, b = i_is_a ? j : i;
       const double R0 = P.R0, R1 = P.R1, R2 = P.R2;
-      const double Va0 = P.Va0, Va1 = P.Va1, Va2 = P.Va2, Vb0 = P.Vb0, Vb1 = P.Vb1, Vb2 = P.Vb2;
+      const double dV0 = P.dV0, dV1 = P.dV1, dV2 = P.dV2;
       const double rsq = P.rsq;
       int k = cache_i[jj];
       const bool same_body = ef & E_SAME;
@@ -1158,7 +1156,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         wxn1 = ws2 * n0;
       }
       // velocity of b's contact point relative to a's
-      const double vr0 = Vb0 - Va0 - wxn0, vr1 = Vb1 - Va1 - wxn1, vr2 = D3 ? Vb2 - Va2 - wxn2 : 0.0;
+      const double vr0 = dV0 - wxn0, vr1 = dV1 - wxn1, vr2 = D3 ? dV2 - wxn2 : 0.0;
       double *xi = &s[FS::S_XI];
       double xi0 = xi[0], xi1 = xi[1], xi2 = D3 ? xi[2] : 0.0;
       const bool linked0 = (kind == FS::LINK || kind == FS::WELD || kind == FS::ATTACH);
@@ -1410,8 +1408,8 @@ template <int DIM, bool UNI> void PairMCA::batch_common(int n, double runi)
       wxn0 = -(ws2 * n1);
       wxn1 = ws2 * n0;
     }
-    const double vr0 = B.Vb0[p] - B.Va0[p] - wxn0, vr1 = B.Vb1[p] - B.Va1[p] - wxn1;
-    const double vr2 = D3 ? B.Vb2[p] - B.Va2[p] - wxn2 : 0.0;
+    const double vr0 = B.dV0[p] - wxn0, vr1 = B.dV1[p] - wxn1;
+    const double vr2 = D3 ? B.dV2[p] - wxn2 : 0.0;
     double xi0 = B.xi0[p], xi1 = B.xi1[p], xi2 = D3 ? B.xi2[p] : 0.0;
     const bool proj = B.proj[p] != 0.0;
     const double sc = B.sc[p], xn = B.xn[p];

@@ -105,7 +105,7 @@ class PairMCA : public Pair {
   // pair geometry and inputs of the general path (pass 2b of pair_loop)
   struct PairPre {
     int i, jj, j, proj;
-    double R0, R1, R2, Va0, Va1, Va2, Vb0, Vb1, Vb2, rsq, r, n0, n1, n2, idbar, eraw, sc, xn;
+    double R0, R1, R2, dV0, dV1, dV2, rsq, r, n0, n1, n2, idbar, eraw, sc, xn;    // dV: V_b - V_a
   };
   // A batch of pairs, one array per quantity (pair_loop: pass 1 fills it for a run of automata,
   // pass 2a computes the common case of all its pairs in vectorised loops, pass 2b applies the
@@ -115,9 +115,10 @@ class PairMCA : public Pair {
     int i[NBCAP], jj[NBCAP], j[NBCAP], ef[NBCAP];
     bigint e[NBCAP], soff[NBCAP];    // entry of the evaluation lists, offset of i's slot (k >= 0)
     // pass 1: geometry
-    double R0[NBCAP], R1[NBCAP], R2[NBCAP], Va0[NBCAP], Va1[NBCAP], Va2[NBCAP], Vb0[NBCAP],
-        Vb1[NBCAP], Vb2[NBCAP], rsq[NBCAP], r[NBCAP], n0[NBCAP], n1[NBCAP], n2[NBCAP],
-        idbar[NBCAP], eraw[NBCAP], proj[NBCAP], sc[NBCAP], xn[NBCAP], hasxi[NBCAP];
+    // (dV = V_b - V_a: the law reads the velocities only as this difference)
+    double R0[NBCAP], R1[NBCAP], R2[NBCAP], dV0[NBCAP], dV1[NBCAP], dV2[NBCAP], rsq[NBCAP],
+        r[NBCAP], n0[NBCAP], n1[NBCAP], n2[NBCAP], idbar[NBCAP], eraw[NBCAP], proj[NBCAP],
+        sc[NBCAP], xn[NBCAP], hasxi[NBCAP];
     // pass 1: state and partner inputs of the common case (kind FREE: not the common case)
     double kind[NBCAP], pn[NBCAP], cd[NBCAP], cr[NBCAP], xi0[NBCAP], xi1[NBCAP], xi2[NBCAP],
         rp0[NBCAP], rp1[NBCAP], rp2[NBCAP], th0[NBCAP], th1[NBCAP], th2[NBCAP], oa0[NBCAP],
@@ -140,12 +141,9 @@ class PairMCA : public Pair {
       P.R0 = R0[p];
       P.R1 = R1[p];
       P.R2 = D3 ? R2[p] : 0.0;
-      P.Va0 = Va0[p];
-      P.Va1 = Va1[p];
-      P.Va2 = D3 ? Va2[p] : 0.0;
-      P.Vb0 = Vb0[p];
-      P.Vb1 = Vb1[p];
-      P.Vb2 = D3 ? Vb2[p] : 0.0;
+      P.dV0 = dV0[p];
+      P.dV1 = dV1[p];
+      P.dV2 = D3 ? dV2[p] : 0.0;
       P.rsq = rsq[p];
       P.r = r[p];
       P.n0 = n0[p];
