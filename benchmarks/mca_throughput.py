@@ -1,6 +1,9 @@
 """Throughput of the MCA interaction laws and of the friction deck's interfaces.
 
-Laws compared: mca and bpm/spring/plastic.
+Laws compared: mca and bpm/spring/plastic (the goal of issue 13 is stated against it), and
+bpm/rotational, LAMMPS's own link law with a tangential and rotational history (normal, shear,
+bending and twisting springs): the nearest native counterpart of an MCA link, which also
+carries plasticity and a many-body stress (``--no-rotational`` leaves it out).
 
 Default (law comparison, issue 13): the same periodic lattice block (2D hexagonal and 3D FCC,
 d = 2.5 nm steel, thermal noise, sheared at a constant tilt velocity through yield) runs
@@ -62,6 +65,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import re
 import subprocess
@@ -185,7 +189,12 @@ def _block_run(variables: dict, out: Path, steps: int) -> dict:
     cmd = [sys.executable, __file__, "--block-worker", str(out)]
     proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
     if proc.returncode != 0:
-        raise RuntimeError(f"block run failed: {(proc.stderr or proc.stdout)[-800:]}")
+        log = out / "block.log"
+        tail = log.read_text()[-800:] if log.exists() else ""
+        raise RuntimeError(
+            f"block run failed (exit {proc.returncode}, {out}): "
+            f"{(proc.stderr or proc.stdout or tail)[-800:]}"
+        )
     t, procs, nsteps, atoms = _loop(out / "block.log")
     cpu = _CPU.findall((out / "block.log").read_text())
     # share of a core the run got (LAMMPS's "% CPU use"); the machine is shared, so the rate per
@@ -252,8 +261,9 @@ def laws_main(
     repeat: int = 3,
     reference_ghost_vel: str = "yes",
     systems: tuple[tuple[int, int], ...] | None = None,
+    rotational: bool = True,
 ) -> int:
-    """Mca vs bpm/spring/plastic on the same 2D and 3D blocks; print and write the CSV.
+    """Mca vs the bpm laws on the same 2D and 3D blocks; print and write the CSV.
 
     ``reference``: path of another build of the mca plugin (e.g. of an older commit), run on
     the same blocks in the same loop, so that before/after ratios share the machine's load.
@@ -265,14 +275,17 @@ def laws_main(
     # "bpm/spring/plastic+nve/mca": the bpm law with the plugin's integrator, which skips the
     # quaternion update that neither law reads: the like-for-like comparison of the two laws'
     # force calculations (as shipped, the bpm law integrates with nve/bpm/sphere)
-    laws = ["bpm/spring/plastic", "bpm/spring/plastic+nve/mca", "mca"] + (
-        ["mca@" + reference_label] if reference else []
+    laws = (
+        ["bpm/spring/plastic", "bpm/spring/plastic+nve/mca"]
+        + (["bpm/rotational"] if rotational else [])
+        + ["mca"]
+        + (["mca@" + reference_label] if reference else [])
     )
     rows = []
     print(
         f"{'dim':>3} {'law':>26} {'automata':>8} {'steps':>7} {'loop_s':>7} "
         f"{'automaton-steps/s':>17} {'dt_ns':>9} {'ns/h':>7} {'ratio':>6} {'like':>5} "
-        f"{'cpu%':>5} {'ratio/cpu-s':>11} {'load':>5}"
+        f"{'/rot':>5} {'cpu%':>5} {'ratio/cpu-s':>11} {'load':>5}"
     )
     with tempfile.TemporaryDirectory(prefix="mca_laws_") as tmp:
         for dim, n in systems or (LAW_SYSTEMS_QUICK if quick else LAW_SYSTEMS):
@@ -320,6 +333,8 @@ def laws_main(
                 ratio = r["rate"] / res["bpm/spring/plastic"]["rate"]
                 ratio_cpu = r["rate_cpu"] / res["bpm/spring/plastic"]["rate_cpu"]
                 ratio_like = r["rate"] / like["rate"]
+                # (against LAMMPS's own link law with a tangential and rotational history)
+                ratio_rot = r["rate"] / res["bpm/rotational"]["rate"] if rotational else math.nan
                 ns_h = r["rate"] / r["atoms"] * r["dt_ns"] * 3600.0
                 row = {
                     "dim": dim,
@@ -339,6 +354,7 @@ def laws_main(
                     "simulated_ns_per_hour": ns_h,
                     "ratio_vs_bpm": ratio,
                     "ratio_vs_bpm_same_integrator": ratio_like,
+                    "ratio_vs_bpm_rotational": ratio_rot,
                     "cpu_use_pct": r["cpu_pct"],
                     "automaton_steps_per_cpu_s": r["rate_cpu"],
                     "ratio_vs_bpm_per_cpu_s": ratio_cpu,
@@ -348,7 +364,8 @@ def laws_main(
                 print(
                     f"{dim:>3} {law:>26} {r['atoms']:>8} {r['steps']:>7} {r['loop_s']:>7.1f} "
                     f"{r['rate']:>17.4g} {r['dt_ns']:>9.3g} {ns_h:>7.3g} {ratio:>6.2f} "
-                    f"{ratio_like:>5.2f} {r['cpu_pct']:>5.0f} {ratio_cpu:>11.2f} {r['load']:>5.1f}"
+                    f"{ratio_like:>5.2f} {ratio_rot:>5.2f} {r['cpu_pct']:>5.0f} {ratio_cpu:>11.2f} "
+                    f"{r['load']:>5.1f}"
                 )
     write_csv(csv_path, rows)
     print(f"wrote {csv_path}")
@@ -369,8 +386,9 @@ def friction_main(
     repeat: int = 3,
     reference_ghost_vel: str = "yes",
     ranks: int = 1,
+    rotational: bool = True,
 ) -> int:
-    """Mca vs bpm/spring/plastic on the friction deck's system; print and write the CSV.
+    """Mca vs the bpm laws on the friction deck's system; print and write the CSV.
 
     The system of a preset (rigid slider, two rough bodies, fixed base; ``mca_friction.in``
     with ``drive deck``: the slider presses and slides from the built state) is prepared once
@@ -384,11 +402,16 @@ def friction_main(
     from tribolmp.lammps import mca
     from tribolmp.lammps.mca.prepare import prepare as mca_prepare
 
-    laws = ["bpm/spring/plastic", "mca"] + (["mca@" + reference_label] if reference else [])
+    laws = (
+        ["bpm/spring/plastic"]
+        + (["bpm/rotational"] if rotational else [])
+        + ["mca"]
+        + (["mca@" + reference_label] if reference else [])
+    )
     rows = []
     print(
         f"{'dim':>3} {'preset':>7} {'law':>20} {'automata':>8} {'steps':>6} {'loop_s':>7} "
-        f"{'automaton-steps/s':>17} {'ratio':>6} {'load':>5}"
+        f"{'automaton-steps/s':>17} {'ratio':>6} {'/rot':>5} {'load':>5}"
     )
     with tempfile.TemporaryDirectory(prefix="mca_friction_") as tmp:
         for dim, preset in FRICTION_SYSTEMS_QUICK if quick else FRICTION_SYSTEMS:
@@ -428,6 +451,7 @@ def friction_main(
             )
             for law, r in res.items():
                 ratio = r["rate"] / res["bpm/spring/plastic"]["rate"]
+                ratio_rot = r["rate"] / res["bpm/rotational"]["rate"] if rotational else math.nan
                 rows.append(
                     {
                         "dim": dim,
@@ -444,12 +468,14 @@ def friction_main(
                         "loop_s_median": r["loop_s_median"],
                         "automaton_steps_per_s": r["rate"],
                         "ratio_vs_bpm": ratio,
+                        "ratio_vs_bpm_rotational": ratio_rot,
                         "load_avg_1min": r["load"],
                     }
                 )
                 print(
                     f"{dim:>3} {preset:>7} {law:>20} {r['atoms']:>8} {r['steps']:>6} "
-                    f"{r['loop_s']:>7.1f} {r['rate']:>17.4g} {ratio:>6.2f} {r['load']:>5.1f}"
+                    f"{r['loop_s']:>7.1f} {r['rate']:>17.4g} {ratio:>6.2f} {ratio_rot:>5.2f} "
+                    f"{r['load']:>5.1f}"
                 )
     write_csv(csv_path, rows)
     print(f"wrote {csv_path}")
@@ -466,7 +492,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument(
         "--friction",
         action="store_true",
-        help="mca vs bpm/spring/plastic on the friction deck's default-preset system",
+        help="mca vs the bpm laws on the friction deck's default-preset system",
     )
     ap.add_argument("--loop", type=float, default=12.0, help="target loop time per law run (s)")
     ap.add_argument(
@@ -513,6 +539,12 @@ def main(argv: list[str] | None = None) -> int:
         default=3,
         help="timed runs per row, interleaved across the rows; the fastest is reported (default 3)",
     )
+    ap.add_argument(
+        "--no-rotational",
+        action="store_true",
+        help="leave out the bpm/rotational rows (law comparisons; they run the most steps' "
+        "worth of the slowest law, so they take the longest)",
+    )
     ap.add_argument("--block-worker", default=None, help=argparse.SUPPRESS)
     ap.add_argument(
         "--out",
@@ -544,6 +576,7 @@ def main(argv: list[str] | None = None) -> int:
                 repeat=args.repeat,
                 reference_ghost_vel=args.reference_ghost_vel,
                 ranks=args.ranks,
+                rotational=not args.no_rotational,
             )
         return laws_main(
             *common,
@@ -552,6 +585,7 @@ def main(argv: list[str] | None = None) -> int:
             repeat=args.repeat,
             reference_ghost_vel=args.reference_ghost_vel,
             systems=args.blocks,
+            rotational=not args.no_rotational,
         )
 
     from tribolmp.lammps import mca

@@ -450,9 +450,10 @@ def block_setup(
     """Write the data file and return the deck variables of ``mca_block.in`` for one law.
 
     The same lattice block (``n`` repeats per side, periodic) for the ``mca``
-    law (no bonds: links are per-pair state) and for ``bpm/spring/plastic``
-    (bonds between neighbours, granular hooke contacts, unlimited
-    ``fix bond/create`` re-linking), with the same material (SI -> nano).
+    law (no bonds: links are per-pair state) and for the bpm laws
+    ``bpm/spring/plastic`` and ``bpm/rotational`` (bonds between neighbours,
+    granular hooke contacts, unlimited ``fix bond/create`` re-linking), with
+    the same material (SI -> nano).
 
     Returns
     -------
@@ -461,7 +462,7 @@ def block_setup(
     """
     from .build import write_bpm_data
 
-    check_choice("law", law, ("mca", "bpm/spring/plastic"))
+    check_choice("law", law, ("mca", "bpm/spring/plastic", "bpm/rotational"))
     p = (params or McaLaw()).replace(dim=dim)
     d = to_lammps(p.diameter, "length")
     out = Path(out_dir)
@@ -493,15 +494,16 @@ def block_setup(
                 diameter=p.diameter,
                 density=p.density,
                 dim=dim,
+                bond_style=law,
             )
         )
         geom = _block(dim, d, n, bonds=True)
         data = write_bpm_data(
             out / "block.data", geom, density=c.density_column, diameter=c.contact_diameter
         )
-        v.update(link_deck_variables(c))
+        v.update(link_deck_variables(c, law))
         v.update(
-            law="plastic",
+            law="plastic" if law == "bpm/spring/plastic" else "rotational",
             kc=f"{c.k_contact:.10g}",
             gc=f"{c.gamma_contact:.10g}",
             muc=f"{c.mu_contact:.10g}",
