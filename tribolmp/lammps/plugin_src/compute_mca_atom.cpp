@@ -54,7 +54,7 @@ void ComputeMCAAtom::compute_peratom()
   auto *fix = dynamic_cast<FixMCAState *>(modify->get_fix_by_id("mca_state"));
   int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++)
-    vec[i] = (fix && (mask[i] & groupbit)) ? fix->out[i][column] : 0.0;
+    vec[i] = (fix && (mask[i] & groupbit)) ? fix->autom[i][column] : 0.0;
 }
 
 double ComputeMCAAtom::memory_usage()

@@ -35,16 +35,26 @@ class FixMCAState : public Fix {
   // masses and radii, mca_law.h link_damping; a restart file of 14-value slots is refused.)
   enum { S_TAG = 0, S_KIND, S_PN, S_XI, S_TH = S_XI + 3, S_RP = S_TH + 3, NSLOT = S_RP + 3 };
   enum { FREE = 0, LINK = 1, WELD = 2, CONTACT = 3, ATTACH = 4 };
-  // automaton layout: stress[6], eps_p tensor[6], eps_eq, pending deps[6], X,
-  // n_links, n_cross, counters[4] (cross formed, cross broken, links broken, welds formed),
-  // von Mises stress, X used by the forces of the last committed step (for re-evaluations),
-  // the pair force and torque of the last committed step (restored by a re-evaluation)
+  // automaton layout: stress[6], eps_eq, n_links, n_cross, von Mises stress (these first
+  // NOUT values are the fix's per-atom output, f_mca_state[1..10]: the fix hands LAMMPS the
+  // rows themselves as its peratom array, so the output is never copied), eps_p tensor[6],
+  // pending deps[6], X, counters[4] (cross formed, cross broken, links broken, welds formed),
+  // X used by the forces of the last committed step (for re-evaluations), the pair force and
+  // torque of the last committed step (restored by a re-evaluation).  (Until 2026-12-06 the
+  // order was stress, eps_p tensor, eps_eq, deps, X, n_links, n_cross, counters, von Mises
+  // stress, X used, force, torque, and the output a separate array written every step;
+  // restart files in that order are read and reordered, unpack_restart.)
   enum {
-    A_SIG = 0, A_EPT = 6, A_EEQ = 12, A_DEP = 13, A_X = 19, A_NL = 20, A_NC = 21,
-    A_CF = 22, A_CB = 23, A_LB = 24, A_WF = 25, A_SEQ = 26, A_XU = 27, A_F = 28, A_T = 31,
-    NAUTO = 34
+    A_SIG = 0, A_EEQ = 6, A_NL = 7, A_NC = 8, A_SEQ = 9, A_EPT = 10, A_DEP = 16, A_X = 22,
+    A_CF = 23, A_CB = 24, A_LB = 25, A_WF = 26, A_XU = 27, A_F = 28, A_T = 31, NAUTO = 34
   };
+  // output columns (sxx syy szz sxy sxz syz eps_p links cross_links seq): the first NOUT
+  // values of an automaton's row
   enum { NOUT = 10 };
+  // per-atom restart record: its length, a layout tag, the slots, the automaton row.  The
+  // tag marks the automaton order above; a record one value shorter (no tag) is the order
+  // before 2026-12-06
+  enum { RESTART_LAYOUT = 2 };
 
   FixMCAState(class LAMMPS *, int, char **);
   ~FixMCAState() override;
@@ -69,8 +79,7 @@ class FixMCAState : public Fix {
   int initialized;          // 1 once the initial links have been made
   double last_commit;       // timestep of the last committed state update
   double **slots;           // [nmax][maxpartner*NSLOT]
-  double **autom;           // [nmax][NAUTO]
-  double **out;             // [nmax][NOUT] per-atom output (peratom array)
+  double **autom;           // [nmax][NAUTO] (its first NOUT columns: the peratom array)
 
   double *slot(int i, int k) { return &slots[i][k * NSLOT]; }
 

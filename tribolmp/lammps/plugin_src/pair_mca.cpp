@@ -38,9 +38,6 @@
 #include "utils.h"
 
 #include <cmath>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 #include <cstdint>
 #include <cstring>
 
@@ -1526,11 +1523,7 @@ void PairMCA::automata_update(int i0, int na, bool advance, bool restore, double
                               double *sums)
 {
   // (rows of contiguous per-atom arrays)
-  double *autom0 = fix->autom[0], *out0 = fix->out[0];
-#if defined(__SSE2__)
-  // (streaming stores of the output rows need 16-byte alignment: glibc's malloc gives it)
-  const bool stream = (reinterpret_cast<uintptr_t>(out0) & 15) == 0;
-#endif
+  double *autom0 = fix->autom[0];
   double *sacc_ = sacc[0];
   const double *radius = atom->radius;
   AutomBatch &A = *abat;
@@ -1646,36 +1639,17 @@ void PairMCA::automata_update(int i0, int na, bool advance, bool restore, double
       am[FS::A_XU] = am[FS::A_X];
       am[FS::A_X] = A.X[q];
     }
+    // (stress, eps_eq, links, cross links, von Mises stress: the first NOUT values of the row
+    // are the per-atom output, f_mca_state and compute mca/atom, read in place.  Until
+    // 2026-12-06 they were also streamed into a separate output array every step: 4-8 % of
+    // the 2D systems' run time)
     for (int c = 0; c < 6; c++) am[FS::A_SIG + c] = A.sig[c][q];
     am[FS::A_NL] = acc[C_NL];
     am[FS::A_NC] = acc[C_NC];
     am[FS::A_SEQ] = A.seq[q];
-    // the per-atom output (read only by dumps and computes, every N steps) with streaming
-    // stores: its rows are not read back here, so they need not be loaded into the cache before
-    // they are written nor evict the pair state (rows of 10 doubles: 16-byte aligned pairs)
-    double *o = out0 + (bigint) i * FS::NOUT;
-#if defined(__SSE2__)
-    if (stream) {
-      _mm_stream_pd(o, _mm_set_pd(A.sig[1][q], A.sig[0][q]));
-      _mm_stream_pd(o + 2, _mm_set_pd(A.sig[3][q], A.sig[2][q]));
-      _mm_stream_pd(o + 4, _mm_set_pd(A.sig[5][q], A.sig[4][q]));
-      _mm_stream_pd(o + 6, _mm_set_pd(acc[C_NL], am[FS::A_EEQ]));
-      _mm_stream_pd(o + 8, _mm_set_pd(A.seq[q], acc[C_NC]));
-    } else
-#endif
-    {
-      for (int c = 0; c < 6; c++) o[c] = A.sig[c][q];
-      o[6] = am[FS::A_EEQ];
-      o[7] = acc[C_NL];
-      o[8] = acc[C_NC];
-      o[9] = A.seq[q];
-    }
     // (the row's last reader)
     for (int k = 0; k < nclear; k++) acc[k] = 0.0;
   }
-#if defined(__SSE2__)
-  _mm_sfence();    // (the streamed rows are visible to later loads of any thread)
-#endif
 }
 
 /* ---------------------------------------------------------------------- */
