@@ -21,8 +21,6 @@ import sys
 import tempfile
 from pathlib import Path
 
-import numpy as np
-
 from tribolmp.lammps.decks import deck_path
 from tribolmp.lammps.law_mca import McaLaw
 from tribolmp.lammps.material_test import block_setup

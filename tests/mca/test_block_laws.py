@@ -65,8 +65,9 @@ def _shear_modulus(tmp_path, law: str, dim: int, n: int) -> float:
     a = np.array(rows)
     box = next(ln for ln in lines if "box = " in ln)
     lo, hi = box.split("=")[1].split("to")
-    lengths = np.array([float(h) - float(q) for q, h in zip(lo.strip(" ()").split(),
-                                                            hi.strip(" ()").split())])
+    lengths = np.array(
+        [float(h) - float(q) for q, h in zip(lo.strip(" ()").split(), hi.strip(" ()").split())]
+    )
     # engineering shear strain of the tilt: xy / ly (nm / nm)
     gamma = vshear * a[:, 0] * float(v["dt"]) / lengths[1]
     # the deck's sxy is -pxy in MPa (units nano); a 2D deck's "volume" is the area, so its
