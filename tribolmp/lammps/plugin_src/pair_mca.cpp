@@ -1641,8 +1641,8 @@ void PairMCA::automata_update(int i0, int na, bool advance, bool restore, double
     }
     // (stress, eps_eq, links, cross links, von Mises stress: the first NOUT values of the row
     // are the per-atom output, f_mca_state and compute mca/atom, read in place.  Until
-    // 2026-12-06 they were also streamed into a separate output array every step: 4-8 % of
-    // the 2D systems' run time)
+    // 2026-12-06 they were also streamed into a separate output array every step: about 5 %
+    // of the 2D systems' run time)
     for (int c = 0; c < 6; c++) am[FS::A_SIG + c] = A.sig[c][q];
     am[FS::A_NL] = acc[C_NL];
     am[FS::A_NC] = acc[C_NC];
