@@ -9,10 +9,10 @@ Default (law comparison, issue 13): the same periodic lattice block (2D hexagona
 d = 2.5 nm steel, thermal noise, sheared at a constant tilt velocity through yield) runs
 ``lammps_inputs/mca_block.in`` with the ``mca`` plugin law and with today's
 ``bpm/spring/plastic`` links (granular hooke contacts, unlimited ``fix bond/create``), each for a
-loop of >= 10 s of LAMMPS time (calibrated by a short first run; every row of a system then runs
-the same number of steps, the largest calibrated one, so that all cover the same phase of the
-shear), on 1 rank.  Automaton-steps per
-second come from LAMMPS's ``Loop time``; ``ratio`` is mca / bpm on the same system (goal >= 0.7).
+loop of >= 10 s of LAMMPS time (calibrated by a short first run, with a margin; every row of a
+system then runs the same number of steps, the largest calibrated one, so that all cover the
+same phase of the shear), on 1 rank.  Automaton-steps per second come from LAMMPS's
+``Loop time``; ``ratio`` is mca / bpm on the same system (goal >= 0.7).
 Each law runs at its own stable timestep (both 0.1 sqrt(m/k) of their stiffest spring), so the
 table also gives simulated ns per wall hour.
 
@@ -83,6 +83,24 @@ QUICK = (("2k", 150e-9, 30e-9, 1500), ("10k", 400e-9, 62e-9, 300))
 
 _LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 _CPU = re.compile(r"([0-9.]+)% CPU use with")
+#: The short calibration run includes the first neighbour build and the first touch of the
+#: arrays, so it underestimates a law's steady rate: session 20 measured loops of 9.4 s and
+#: 9.3 s for a 12 s target (rate 1.28-1.29x the calibrated one).  The step counts are scaled by
+#: this margin so that every timed loop is >= MIN_LOOP_S; _short_loops names any that is not.
+_CAL_MARGIN = 1.3
+#: shortest timed loop that means something (issue 13: >= 10 s each)
+MIN_LOOP_S = 10.0
+
+
+def _short_loops(rows: list[dict]) -> None:
+    """Print one warning line per row whose fastest loop is below MIN_LOOP_S."""
+    for r in rows:
+        if r["loop_s"] < MIN_LOOP_S:
+            how = f" with {r['integrator']}" if r.get("integrator") else ""
+            print(
+                f"warning: {r['dim']}D {r['law']}{how} ({r['automata']} automata): loop "
+                f"{r['loop_s']:.1f} s < {MIN_LOOP_S:.0f} s; rerun with a larger --loop"
+            )
 
 
 def _load() -> float:
@@ -314,7 +332,11 @@ def laws_main(
                         )
                 v.update(drive="deform", vshear="5.0")
                 cal = _block_run(v, out / "cal", 200 if quick else 500)
-                cals[law] = (v, out, max(200, int(loop_s * cal["rate"] / cal["atoms"])))
+                cals[law] = (
+                    v,
+                    out,
+                    max(200, int(_CAL_MARGIN * loop_s * cal["rate"] / cal["atoms"])),
+                )
             # one step count for every row (the longest calibrated one: each loop >= loop_s), so
             # that the rows cover the same phase of the shear (elastic, yield, rupture), whose
             # cost per step differs
@@ -367,6 +389,8 @@ def laws_main(
                     f"{ratio_like:>5.2f} {ratio_rot:>5.2f} {r['cpu_pct']:>5.0f} {ratio_cpu:>11.2f} "
                     f"{r['load']:>5.1f}"
                 )
+    if not quick:
+        _short_loops(rows)
     write_csv(csv_path, rows)
     print(f"wrote {csv_path}")
     return 0
@@ -441,7 +465,10 @@ def friction_main(
                     return _run(f"python-{ranks}", v, prep / name)
 
                 cal = timed(300, "cal")
-                runs[law] = (timed, max(400, int(loop_s * cal["rate"] / cal["atoms"])))
+                runs[law] = (
+                    timed,
+                    max(400, int(_CAL_MARGIN * loop_s * cal["rate"] / cal["atoms"])),
+                )
             # one step count for every law (the longest calibrated one, so each loop is >= loop_s):
             # the rate depends on the phase of the run (approach, first contact, sliding), so the
             # rows must cover the same steps from the same built state
@@ -477,6 +504,8 @@ def friction_main(
                     f"{r['loop_s']:>7.1f} {r['rate']:>17.4g} {ratio:>6.2f} {ratio_rot:>5.2f} "
                     f"{r['load']:>5.1f}"
                 )
+    if not quick:
+        _short_loops(rows)
     write_csv(csv_path, rows)
     print(f"wrote {csv_path}")
     return 0
