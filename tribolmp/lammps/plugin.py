@@ -157,11 +157,11 @@ def _compiler() -> str:
     return path
 
 
-def _sources() -> list[Path]:
-    srcs = sorted(SOURCE_DIR.glob("*.cpp")) + sorted(SOURCE_DIR.glob("*.h"))
+def _sources(source_dir: Path = SOURCE_DIR) -> list[Path]:
+    srcs = sorted(source_dir.glob("*.cpp")) + sorted(source_dir.glob("*.h"))
     if not any(p.suffix == ".cpp" for p in srcs):
         raise MissingFeatureError(
-            f"MCA plugin build: expected C++ sources in {SOURCE_DIR}, got none "
+            f"MCA plugin build: expected C++ sources in {source_dir}, got none "
             "(fix: reinstall tribolmp; the sources are package data)"
         )
     return srcs
@@ -192,7 +192,12 @@ def _build_key(lmpdir: Path, cxx: str, defines: list[str]) -> str:
 
 
 def _compile_args(
-    cxx: str, native: tuple[str, ...], defines: list[str], include: Path, mpi_inc: Path
+    cxx: str,
+    native: tuple[str, ...],
+    defines: list[str],
+    include: Path,
+    mpi_inc: Path,
+    source_dir: Path = SOURCE_DIR,
 ) -> list[str]:
     """Compiler, flags and include folders of the plugin's build (no sources, no output)."""
     return [
@@ -202,7 +207,7 @@ def _compile_args(
         *defines,
         f"-I{include}",
         f"-I{mpi_inc}",
-        f"-I{SOURCE_DIR}",
+        f"-I{source_dir}",
     ]
 
 
@@ -279,11 +284,15 @@ def build_plugin(
     cxx: str | None = None,
     defines: list[str] | None = None,
     force: bool = False,
+    source_dir: Path | None = None,
 ) -> Path:
     """Compile the plugin into ``folder`` under an exclusive file lock.
 
     Returns the path of ``mcaplugin.so``.  Another process holding the lock
     is waited for; if it produced the library meanwhile, that one is used.
+    ``source_dir`` compiles another copy of the sources with the same flags
+    (default: the package's; ``benchmarks/_mca_bound_build.py`` builds a
+    timing-only variant this way).
     """
     import fcntl
 
@@ -291,6 +300,7 @@ def build_plugin(
     cxx = cxx or _compiler()
     defines = defines if defines is not None else _pc_cflags(lmpdir)
     folder = Path(folder)
+    srcdir = Path(source_dir) if source_dir is not None else SOURCE_DIR
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -322,10 +332,10 @@ def build_plugin(
 
             def command(native: tuple[str, ...]) -> list[str]:
                 return [
-                    *_compile_args(cxx, native, defines, include, mpi_inc),
+                    *_compile_args(cxx, native, defines, include, mpi_inc, srcdir),
                     "-o",
                     str(tmp),
-                    *[str(p) for p in _sources() if p.suffix == ".cpp"],
+                    *[str(p) for p in _sources(srcdir) if p.suffix == ".cpp"],
                     str(lib),
                     f"-Wl,-rpath,{lmpdir}",
                 ]

@@ -1,0 +1,146 @@
+r"""A timing-only build of the mca plugin: the pair loop without any pair-state traffic.
+
+An upper bound on what any redesign of the pair state's storage could gain (structure of
+arrays, fewer values per pair, single precision): in this build the common case of the pair
+loop reads every pair's state from one constant entry that stays in the L1 cache (an
+unbreakable attachment with no stored response, its previous separation equal to the current
+one) and writes the advanced state to another, so the per-pair state costs no memory traffic at
+all.  ``--no-partners`` in addition reads no partner row and adds nothing into the partner's
+sums (run it on a block at rest).  Everything else runs as shipped: the vectorised law, the
+sums into the automaton's own row, the stress update.  The physics is *not* the law's (every
+pair acts as a fresh attachment), so the build is only for timing, never for results::
+
+    python benchmarks/_mca_bound_build.py --out /tmp/bound
+    python benchmarks/mca_throughput.py --blocks 2:120,3:17 --no-rotational \
+        --reference-plugin /tmp/bound/mcaplugin.so --reference-label bound-no-pair-state \
+        --reference-ghost-vel no
+
+The edits are anchored on the source text of ``pair_mca.cpp``: if the pair loop changes so
+that an anchor no longer matches exactly once, the script stops with one line (exit 2) instead
+of building something else.  Measured in docs/mca.md, "Bounds: what the pair loop's memory
+traffic costs".
+"""
+
+from __future__ import annotations
+
+import argparse
+import shutil
+import sys
+import tempfile
+from pathlib import Path
+
+#: (anchor in pair_mca.cpp, replacement): pass 1a reads a constant entry, pass 2b writes to one
+EDITS: tuple[tuple[str, str], ...] = (
+    (
+        "        const double *sl = &psc_i[jj * NP];\n",
+        "        // TIMING BOUND (benchmarks/_mca_bound_build.py): a constant attachment in L1\n"
+        "        static double bound_entry[16] = {0.0, double(FS::ATTACH)};\n"
+        "        const double *sl = bound_entry;\n"
+        "        (void) psc_i;\n",
+    ),
+    (
+        "        B.rp0[ip] = sl[FS::S_RP];\n        B.rp1[ip] = sl[FS::S_RP + 1];\n",
+        "        B.rp0[ip] = R0;\n        B.rp1[ip] = R1;\n",
+    ),
+    ("          B.rp2[ip] = sl[FS::S_RP + 2];\n", "          B.rp2[ip] = R2;\n"),
+    (
+        "        double *s = psc + B.soff[ip];\n        if (jlocal && mirrorflat[e] < 0) {\n",
+        "        static double bound_sink[16];\n"
+        "        double *s = bound_sink;\n"
+        "        if (jlocal && mirrorflat[e] < 0) {\n",
+    ),
+)
+
+
+#: further edits of ``--no-partners``: no partner row read, nothing added into the partner's
+#: sums (every pair of an automaton reads its own row and sits at rest at contact distance)
+PARTNER_EDITS: tuple[tuple[str, str], ...] = (
+    (
+        "      const int a = i_is_a ? i : j, b = i_is_a ? j : i;\n"
+        "      // canonical relative position a -> b and velocities",
+        "      const int a = i, b = i;    // TIMING BOUND: no partner row\n"
+        "      (void) j;\n"
+        "      // canonical relative position a -> b and velocities",
+    ),
+    (
+        "      const double rsq = D3 ? R0 * R0 + R1 * R1 + R2 * R2 : R0 * R0 + R1 * R1;\n"
+        "      const int k1 = cache_i[jj];\n",
+        "      R0 = dbar;    // TIMING BOUND: at rest at contact distance (no partner position)\n"
+        "      R1 = R2 = 0.0;\n"
+        "      const double rsq = D3 ? R0 * R0 + R1 * R1 + R2 * R2 : R0 * R0 + R1 * R1;\n"
+        "      const int k1 = cache_i[jj];\n",
+    ),
+    (
+        "      apply(j, false, dx, dy, dz);\n",
+        "      (void) dx, (void) dy, (void) dz;    // TIMING BOUND: nothing into j's sums\n",
+    ),
+)
+
+
+class AnchorError(ValueError):
+    """An edit's anchor does not occur exactly once in the source."""
+
+
+def bound_source(text: str, *, partners: bool = True) -> str:
+    """Apply the timing bound's edits to the source of ``pair_mca.cpp``.
+
+    Parameters
+    ----------
+    text : str
+        The shipped ``pair_mca.cpp``.
+    partners : bool
+        False: also leave out the partners' rows (``PARTNER_EDITS``).
+
+    Raises
+    ------
+    AnchorError
+        An anchor occurs zero or several times (the pair loop changed).
+    """
+    edits = EDITS if partners else EDITS + PARTNER_EDITS
+    for k, (anchor, replacement) in enumerate(edits):
+        n = text.count(anchor)
+        if n != 1:
+            first = anchor.strip().splitlines()[0]
+            raise AnchorError(
+                f"edit {k}: expected the line '{first}' once in pair_mca.cpp, found it {n} times "
+                "(the pair loop changed: update EDITS in benchmarks/_mca_bound_build.py)"
+            )
+        text = text.replace(anchor, replacement)
+    return text
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Build the bound into ``--out`` and print its path (exit 2: the edits no longer apply)."""
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--out", required=True, help="folder for the bound's mcaplugin.so")
+    ap.add_argument(
+        "--no-partners",
+        action="store_true",
+        help="also no partner rows: each pair reads its own automaton's row, at rest at contact "
+        "distance, and adds nothing into the partner's sums (run it on a block at rest: "
+        "-var vshear 0 -var temp 0, or its automata drift and the lists rebuild)",
+    )
+    args = ap.parse_args(argv)
+    from tribolmp.errors import MissingFeatureError
+    from tribolmp.lammps.plugin import SOURCE_DIR, build_plugin
+
+    with tempfile.TemporaryDirectory(prefix="mca_bound_src_") as tmp:
+        src = Path(tmp) / "plugin_src"
+        shutil.copytree(SOURCE_DIR, src)
+        pair = src / "pair_mca.cpp"
+        try:
+            pair.write_text(bound_source(pair.read_text(), partners=not args.no_partners))
+        except AnchorError as exc:
+            print(f"mca_bound_build: {exc}", file=sys.stderr)
+            return 2
+        try:
+            so = build_plugin(Path(args.out), source_dir=src, force=True)
+        except MissingFeatureError as exc:
+            print(f"mca_bound_build: {exc}", file=sys.stderr)
+            return 3
+    print(so)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

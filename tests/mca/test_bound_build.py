@@ -1,0 +1,62 @@
+"""The timing-only bound build (``benchmarks/_mca_bound_build.py``) still applies to the source.
+
+The bound on the pair state's cost in docs/mca.md is reproducible only while the script's
+anchored edits match the shipped pair loop; these tests fail as soon as the loop changes so
+that an edit would no longer apply (or would apply twice), instead of the script silently
+building something else.  No compilation here: the build itself is the benchmark's.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import pytest
+
+from tribolmp.lammps.plugin import SOURCE_DIR
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _script():
+    spec = importlib.util.spec_from_file_location(
+        "mca_bound_build", ROOT / "benchmarks" / "_mca_bound_build.py"
+    )
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_edits_apply_once_to_the_shipped_pair_loop():
+    mod = _script()
+    text = (SOURCE_DIR / "pair_mca.cpp").read_text()
+    out = mod.bound_source(text)
+    # every anchor replaced, nothing else touched
+    for anchor, replacement in mod.EDITS:
+        assert anchor not in out
+        assert replacement in out
+    assert out.count("bound_entry") == 2 and out.count("bound_sink") == 2
+    # the general path keeps its own reads of the pair state
+    assert out.count("psc + (eoff + jj) * NP - 1") == text.count("psc + (eoff + jj) * NP - 1") > 0
+
+
+def test_no_partners_edits_apply_once():
+    mod = _script()
+    text = (SOURCE_DIR / "pair_mca.cpp").read_text()
+    out = mod.bound_source(text, partners=False)
+    for anchor, replacement in mod.EDITS + mod.PARTNER_EDITS:
+        # (a replacement may keep its anchor's lines after an inserted one)
+        assert out.count(anchor) == replacement.count(anchor)
+        assert replacement in out
+    # the general path still adds into both automata (its own apply of j is the scatter's)
+    assert "apply(i, true, -dx, -dy, -dz);" in out
+
+
+@pytest.mark.parametrize("how", ["missing", "twice"])
+def test_a_changed_pair_loop_is_refused(how):
+    mod = _script()
+    text = (SOURCE_DIR / "pair_mca.cpp").read_text()
+    anchor = mod.EDITS[0][0]
+    bad = text.replace(anchor, "") if how == "missing" else text.replace(anchor, anchor + anchor)
+    with pytest.raises(mod.AnchorError, match="edit 0: expected the line"):
+        mod.bound_source(bad)
