@@ -157,7 +157,9 @@ def _compiler() -> str:
     return path
 
 
-def _sources(source_dir: Path = SOURCE_DIR) -> list[Path]:
+def _sources(source_dir: Path | None = None) -> list[Path]:
+    # (the package's folder looked up at call time: tests point SOURCE_DIR elsewhere)
+    source_dir = SOURCE_DIR if source_dir is None else source_dir
     srcs = sorted(source_dir.glob("*.cpp")) + sorted(source_dir.glob("*.h"))
     if not any(p.suffix == ".cpp" for p in srcs):
         raise MissingFeatureError(
@@ -197,7 +199,7 @@ def _compile_args(
     defines: list[str],
     include: Path,
     mpi_inc: Path,
-    source_dir: Path = SOURCE_DIR,
+    source_dir: Path | None = None,
 ) -> list[str]:
     """Compiler, flags and include folders of the plugin's build (no sources, no output)."""
     return [
@@ -207,7 +209,7 @@ def _compile_args(
         *defines,
         f"-I{include}",
         f"-I{mpi_inc}",
-        f"-I{source_dir}",
+        f"-I{SOURCE_DIR if source_dir is None else source_dir}",
     ]
 
 
@@ -300,7 +302,7 @@ def build_plugin(
     cxx = cxx or _compiler()
     defines = defines if defines is not None else _pc_cflags(lmpdir)
     folder = Path(folder)
-    srcdir = Path(source_dir) if source_dir is not None else SOURCE_DIR
+    srcdir = Path(source_dir) if source_dir is not None else None
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
