@@ -103,7 +103,7 @@ def bound_source(text: str, *, partners: bool = True) -> str:
             first = anchor.strip().splitlines()[0]
             raise AnchorError(
                 f"edit {k}: expected the line '{first}' once in pair_mca.cpp, found it {n} times "
-                "(the pair loop changed: update EDITS in benchmarks/_mca_bound_build.py)"
+                "(the pair loop changed: update EDITS or PARTNER_EDITS in this script)"
             )
         text = text.replace(anchor, replacement)
     return text
@@ -121,6 +121,11 @@ def main(argv: list[str] | None = None) -> int:
         "-var vshear 0 -var temp 0, or its automata drift and the lists rebuild)",
     )
     args = ap.parse_args(argv)
+    try:
+        Path(args.out).mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        print(f"--out: expected a writable folder, got {args.out} ({exc.strerror})", file=sys.stderr)
+        return 2
     from tribolmp.errors import MissingFeatureError
     from tribolmp.lammps.plugin import SOURCE_DIR, build_plugin
 
@@ -137,7 +142,7 @@ def main(argv: list[str] | None = None) -> int:
             so = build_plugin(Path(args.out), source_dir=src, force=True)
         except MissingFeatureError as exc:
             print(f"mca_bound_build: {exc}", file=sys.stderr)
-            return 3
+            return exc.exit_code
     print(so)
     return 0
 
