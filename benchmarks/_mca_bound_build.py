@@ -124,7 +124,9 @@ def main(argv: list[str] | None = None) -> int:
     try:
         Path(args.out).mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        print(f"--out: expected a writable folder, got {args.out} ({exc.strerror})", file=sys.stderr)
+        print(
+            f"--out: expected a writable folder, got {args.out} ({exc.strerror})", file=sys.stderr
+        )
         return 2
     from tribolmp.errors import MissingFeatureError
     from tribolmp.lammps.plugin import SOURCE_DIR, build_plugin
