@@ -19,6 +19,16 @@ The edits are anchored on the source text of ``pair_mca.cpp``: if the pair loop 
 that an anchor no longer matches exactly once, the script stops with one line (exit 2) instead
 of building something else.  Measured in docs/mca.md, "Bounds: what the pair loop's memory
 traffic costs".
+
+``--probe KIND:K`` builds the shipped law (same numbers) with K extra operations of one kind per
+evaluated pair, inserted at the start of the pair's gather (pass 1a): ``store`` (scalar stores,
+each to its own cache line), ``vstore`` (256-bit stores, each to its own line), ``load``
+(scalar loads into four independent sums), ``add`` (register additions, eight independent
+chains) or ``nop``.  The time each kind adds per operation says which resource the loop is
+bound by, where the host has no hardware counters (docs/mca.md, "What the pair loop is bound
+by")::
+
+    python benchmarks/_mca_bound_build.py --out /tmp/probe_store --probe store:40
 """
 
 from __future__ import annotations
@@ -77,8 +87,101 @@ PARTNER_EDITS: tuple[tuple[str, str], ...] = (
 )
 
 
+#: where ``--probe`` inserts its operations: right after a pair is taken into the batch
+PROBE_ANCHOR = "      const int ip = npre++;\n"
+
+#: the probe's kinds and the C++ of one operation q (the buffer: 8192 doubles, a global so that
+#: the compiler keeps every store; ``ip & 7`` keeps consecutive stores from being merged)
+PROBE_KINDS = ("store", "vstore", "load", "add", "nop")
+
+#: declared before the source's ``using namespace LAMMPS_NS;`` by ``--probe``
+PROBE_GLOBALS = (
+    "#include <immintrin.h>\n"
+    "// TIMING PROBE (_mca_bound_build.py --probe): globals, so no store is dropped\n"
+    "double mca_probe_buf[8192];\ndouble mca_probe_sink[4];\n"
+)
+
+
 class AnchorError(ValueError):
     """An edit's anchor does not occur exactly once in the source."""
+
+
+def _apply(text: str, edits, what: str) -> str:
+    """Replace each anchor of ``edits``, which must occur exactly once."""
+    for k, (anchor, replacement) in enumerate(edits):
+        n = text.count(anchor)
+        if n != 1:
+            first = anchor.strip().splitlines()[0]
+            raise AnchorError(
+                f"edit {k}: expected the line '{first}' once in pair_mca.cpp, found it {n} times "
+                f"(the pair loop changed: update {what} in this script)"
+            )
+        text = text.replace(anchor, replacement)
+    return text
+
+
+def probe_source(text: str, kind: str, count: int) -> str:
+    """Insert ``count`` operations of ``kind`` per evaluated pair into ``pair_mca.cpp``.
+
+    Parameters
+    ----------
+    text : str
+        The shipped ``pair_mca.cpp``.
+    kind : {'store', 'vstore', 'load', 'add', 'nop'}
+        The operation (see the module's docstring).
+    count : int
+        Operations per evaluated pair, 1-512.
+
+    Raises
+    ------
+    ValueError
+        Unknown kind or count out of range.
+    AnchorError
+        The anchor occurs zero or several times (the pair loop changed).
+    """
+    if kind not in PROBE_KINDS:
+        raise ValueError(f"--probe: expected a kind in {', '.join(PROBE_KINDS)}, got {kind!r}")
+    if not 1 <= count <= 512:
+        raise ValueError(f"--probe: expected 1-512 operations per pair, got {count}")
+    # (each operation touches its own cache line, 64 bytes = 8 doubles apart)
+    if kind == "store":
+        body = "".join(f"      mca_probe_buf[{8 * q} + (ip & 7)] = R0;\n" for q in range(count))
+    elif kind == "vstore":
+        body = (
+            "      {\n        const __m256d pv = _mm256_set1_pd(R0);\n"
+            + "".join(
+                f"        _mm256_storeu_pd(&mca_probe_buf[{8 * q}], pv);\n" for q in range(count)
+            )
+            + "      }\n"
+        )
+    elif kind == "load":
+        body = (
+            "      {\n        double a[4] = {0.0, 0.0, 0.0, 0.0};\n"
+            + "".join(
+                f"        a[{q % 4}] += mca_probe_buf[{8 * q} + (ip & 7)];\n" for q in range(count)
+            )
+            + "        for (int q = 0; q < 4; q++) mca_probe_sink[q] += a[q];\n      }\n"
+        )
+    elif kind == "add":
+        # (the empty asm keeps each addition: the compiler may not fold them)
+        body = (
+            "      {\n        double a[8] = {R0, R1, R0, R1, R0, R1, R0, R1};\n"
+            + "".join(
+                f'        a[{q % 8}] += 1.0;\n        asm volatile("" : "+x"(a[{q % 8}]));\n'
+                for q in range(count)
+            )
+            + "        for (int q = 0; q < 8; q++) mca_probe_sink[q & 3] += a[q];\n      }\n"
+        )
+    else:
+        body = '      asm volatile("' + "nop\\n\\t" * count + '");\n'
+    return _apply(
+        text,
+        (
+            ("using namespace LAMMPS_NS;\n", PROBE_GLOBALS + "using namespace LAMMPS_NS;\n"),
+            (PROBE_ANCHOR, PROBE_ANCHOR + f"      // TIMING PROBE: {count} x {kind}\n" + body),
+        ),
+        "PROBE_ANCHOR",
+    )
 
 
 def bound_source(text: str, *, partners: bool = True) -> str:
@@ -97,16 +200,7 @@ def bound_source(text: str, *, partners: bool = True) -> str:
         An anchor occurs zero or several times (the pair loop changed).
     """
     edits = EDITS if partners else EDITS + PARTNER_EDITS
-    for k, (anchor, replacement) in enumerate(edits):
-        n = text.count(anchor)
-        if n != 1:
-            first = anchor.strip().splitlines()[0]
-            raise AnchorError(
-                f"edit {k}: expected the line '{first}' once in pair_mca.cpp, found it {n} times "
-                "(the pair loop changed: update EDITS or PARTNER_EDITS in this script)"
-            )
-        text = text.replace(anchor, replacement)
-    return text
+    return _apply(text, edits, "EDITS or PARTNER_EDITS")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -120,7 +214,27 @@ def main(argv: list[str] | None = None) -> int:
         "distance, and adds nothing into the partner's sums (run it on a block at rest: "
         "-var vshear 0 -var temp 0, or its automata drift and the lists rebuild)",
     )
+    ap.add_argument(
+        "--probe",
+        metavar="KIND:K",
+        help="instead of the bound: the shipped law with K extra operations of KIND "
+        f"({', '.join(PROBE_KINDS)}) per evaluated pair (timing only)",
+    )
     args = ap.parse_args(argv)
+    probe = None
+    if args.probe is not None:
+        kind, _, count = args.probe.partition(":")
+        if args.no_partners:
+            print(
+                "--probe: builds the shipped law; it does not combine with --no-partners",
+                file=sys.stderr,
+            )
+            return 2
+        try:
+            probe = (kind, int(count))
+        except ValueError:
+            print(f"--probe: expected KIND:K with K an integer, got {args.probe}", file=sys.stderr)
+            return 2
     try:
         Path(args.out).mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -136,9 +250,16 @@ def main(argv: list[str] | None = None) -> int:
         shutil.copytree(SOURCE_DIR, src)
         pair = src / "pair_mca.cpp"
         try:
-            pair.write_text(bound_source(pair.read_text(), partners=not args.no_partners))
+            text = pair.read_text()
+            if probe is not None:
+                pair.write_text(probe_source(text, *probe))
+            else:
+                pair.write_text(bound_source(text, partners=not args.no_partners))
         except AnchorError as exc:
             print(f"mca_bound_build: {exc}", file=sys.stderr)
+            return 2
+        except ValueError as exc:
+            print(exc, file=sys.stderr)
             return 2
         try:
             so = build_plugin(Path(args.out), source_dir=src, force=True)

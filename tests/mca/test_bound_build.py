@@ -60,3 +60,37 @@ def test_a_changed_pair_loop_is_refused(how):
     bad = text.replace(anchor, "") if how == "missing" else text.replace(anchor, anchor + anchor)
     with pytest.raises(mod.AnchorError, match="edit 0: expected the line"):
         mod.bound_source(bad)
+
+
+@pytest.mark.parametrize("kind", ["store", "vstore", "load", "add", "nop"])
+def test_probe_inserts_its_operations_once_per_pair(kind):
+    mod = _script()
+    text = (SOURCE_DIR / "pair_mca.cpp").read_text()
+    out = mod.probe_source(text, kind, 7)
+    # inserted right after the pair is taken into the batch, before its first copy into it
+    start = out.index(mod.PROBE_ANCHOR + "      // TIMING PROBE: 7 x " + kind) + len(
+        mod.PROBE_ANCHOR
+    )
+    end = out.index("      B.i[ip] = i;", start)
+    block = out[start:end]
+    op = {
+        "store": "] = R0;",
+        "vstore": "_mm256_storeu_pd(",
+        "load": "+= mca_probe_buf[",
+        "add": "+= 1.0;",
+        "nop": "nop\\n",
+    }[kind]
+    assert block.count(op) == 7
+    # without the probe's block and globals, the source is the shipped one (same numbers)
+    assert (out[:start] + out[end:]).replace(mod.PROBE_GLOBALS, "", 1) == text
+
+
+def test_probe_refuses_a_changed_loop_and_bad_arguments():
+    mod = _script()
+    text = (SOURCE_DIR / "pair_mca.cpp").read_text()
+    with pytest.raises(mod.AnchorError, match="PROBE_ANCHOR"):
+        mod.probe_source(text.replace(mod.PROBE_ANCHOR, ""), "store", 4)
+    with pytest.raises(ValueError, match="expected a kind"):
+        mod.probe_source(text, "fma", 4)
+    with pytest.raises(ValueError, match="1-512"):
+        mod.probe_source(text, "store", 0)
