@@ -90,9 +90,30 @@ PARTNER_EDITS: tuple[tuple[str, str], ...] = (
 #: where ``--probe`` inserts its operations: right after a pair is taken into the batch
 PROBE_ANCHOR = "      const int ip = npre++;\n"
 
-#: the probe's kinds and the C++ of one operation q (the buffer: 8192 doubles, a global so that
-#: the compiler keeps every store; ``ip & 7`` keeps consecutive stores from being merged)
-PROBE_KINDS = ("store", "vstore", "load", "add", "nop")
+#: the probe's kinds: C++ before the operations, of operation q (a ``str.format`` template; o:
+#: its offset in the buffer, a and b: its accumulator) and after them.  The buffer is a global
+#: of 8192 doubles, so the compiler keeps every store; ``ip & 7`` keeps consecutive stores from
+#: being merged, and the empty asm keeps each addition from being folded.
+PROBE_CODE: dict[str, tuple[str, str, str]] = {
+    "store": ("", "      mca_probe_buf[{o} + (ip & 7)] = R0;\n", ""),
+    "vstore": (
+        "      {\n        const __m256d pv = _mm256_set1_pd(R0);\n",
+        "        _mm256_storeu_pd(&mca_probe_buf[{o}], pv);\n",
+        "      }\n",
+    ),
+    "load": (
+        "      {\n        double a[4] = {0.0, 0.0, 0.0, 0.0};\n",
+        "        a[{a}] += mca_probe_buf[{o} + (ip & 7)];\n",
+        "        for (int q = 0; q < 4; q++) mca_probe_sink[q] += a[q];\n      }\n",
+    ),
+    "add": (
+        "      {\n        double a[8] = {R0, R1, R0, R1, R0, R1, R0, R1};\n",
+        '        a[{b}] += 1.0;\n        asm volatile("" : "+x"(a[{b}]));\n',
+        "        for (int q = 0; q < 8; q++) mca_probe_sink[q & 3] += a[q];\n      }\n",
+    ),
+    "nop": ('      asm volatile("', "nop\\n\\t", '");\n'),
+}
+PROBE_KINDS = tuple(PROBE_CODE)
 
 #: declared before the source's ``using namespace LAMMPS_NS;`` by ``--probe``
 PROBE_GLOBALS = (
@@ -143,37 +164,9 @@ def probe_source(text: str, kind: str, count: int) -> str:
         raise ValueError(f"--probe: expected a kind in {', '.join(PROBE_KINDS)}, got {kind!r}")
     if not 1 <= count <= 512:
         raise ValueError(f"--probe: expected 1-512 operations per pair, got {count}")
-    # (each operation touches its own cache line, 64 bytes = 8 doubles apart)
-    if kind == "store":
-        body = "".join(f"      mca_probe_buf[{8 * q} + (ip & 7)] = R0;\n" for q in range(count))
-    elif kind == "vstore":
-        body = (
-            "      {\n        const __m256d pv = _mm256_set1_pd(R0);\n"
-            + "".join(
-                f"        _mm256_storeu_pd(&mca_probe_buf[{8 * q}], pv);\n" for q in range(count)
-            )
-            + "      }\n"
-        )
-    elif kind == "load":
-        body = (
-            "      {\n        double a[4] = {0.0, 0.0, 0.0, 0.0};\n"
-            + "".join(
-                f"        a[{q % 4}] += mca_probe_buf[{8 * q} + (ip & 7)];\n" for q in range(count)
-            )
-            + "        for (int q = 0; q < 4; q++) mca_probe_sink[q] += a[q];\n      }\n"
-        )
-    elif kind == "add":
-        # (the empty asm keeps each addition: the compiler may not fold them)
-        body = (
-            "      {\n        double a[8] = {R0, R1, R0, R1, R0, R1, R0, R1};\n"
-            + "".join(
-                f'        a[{q % 8}] += 1.0;\n        asm volatile("" : "+x"(a[{q % 8}]));\n'
-                for q in range(count)
-            )
-            + "        for (int q = 0; q < 8; q++) mca_probe_sink[q & 3] += a[q];\n      }\n"
-        )
-    else:
-        body = '      asm volatile("' + "nop\\n\\t" * count + '");\n'
+    head, op, tail = PROBE_CODE[kind]
+    # (operation q touches its own cache line, o = 8 q doubles = 64 q bytes into the buffer)
+    body = head + "".join(op.format(o=8 * q, a=q % 4, b=q % 8) for q in range(count)) + tail
     return _apply(
         text,
         (
