@@ -23,7 +23,8 @@ traffic costs".
 ``--probe KIND:K`` builds the shipped law (same numbers) with K extra operations of one kind per
 evaluated pair, inserted at the start of the pair's gather (pass 1a): ``store`` (scalar stores,
 each to its own cache line), ``vstore`` (256-bit stores, each to its own line), ``load``
-(scalar loads into four independent sums), ``add`` (register additions, eight independent
+(scalar loads into four independent sums), ``gather`` (AVX2 gathers of four doubles from four
+cache lines, into four independent sums), ``add`` (register additions, eight independent
 chains) or ``nop``.  The time each kind adds per operation says which resource the loop is
 bound by, where the host has no hardware counters (docs/mca.md, "What the pair loop is bound
 by")::
@@ -92,7 +93,7 @@ PROBE_ANCHOR = "      const int ip = npre++;\n"
 
 #: the probe's kinds: C++ before the operations, of operation q (a ``str.format`` template; o:
 #: its offset in the buffer, a and b: its accumulator) and after them.  The buffer is a global
-#: of 8192 doubles, so the compiler keeps every store; ``ip & 7`` keeps consecutive stores from
+#: of 16384 doubles, so the compiler keeps every store; ``ip & 7`` keeps consecutive stores from
 #: being merged, and the empty asm keeps each addition from being folded.
 PROBE_CODE: dict[str, tuple[str, str, str]] = {
     "store": ("", "      mca_probe_buf[{o} + (ip & 7)] = R0;\n", ""),
@@ -111,6 +112,15 @@ PROBE_CODE: dict[str, tuple[str, str, str]] = {
         '        a[{b}] += 1.0;\n        asm volatile("" : "+x"(a[{b}]));\n',
         "        for (int q = 0; q < 8; q++) mca_probe_sink[q & 3] += a[q];\n      }\n",
     ),
+    "gather": (
+        "      {\n        __m256d ga[4] = {_mm256_setzero_pd(), _mm256_setzero_pd(),\n"
+        "                         _mm256_setzero_pd(), _mm256_setzero_pd()};\n"
+        "        const __m128i gi = _mm_setr_epi32(0, 8, 16, 24);\n",
+        "        ga[{a}] = _mm256_add_pd(\n"
+        "            ga[{a}], _mm256_i32gather_pd(&mca_probe_buf[{o4} + (ip & 7)], gi, 8));\n",
+        "        for (int q = 0; q < 4; q++) mca_probe_sink[q] += _mm256_cvtsd_f64(ga[q]);\n"
+        "      }\n",
+    ),
     "nop": ('      asm volatile("', "nop\\n\\t", '");\n'),
 }
 PROBE_KINDS = tuple(PROBE_CODE)
@@ -119,7 +129,7 @@ PROBE_KINDS = tuple(PROBE_CODE)
 PROBE_GLOBALS = (
     "#include <immintrin.h>\n"
     "// TIMING PROBE (_mca_bound_build.py --probe): globals, so no store is dropped\n"
-    "double mca_probe_buf[8192];\ndouble mca_probe_sink[4];\n"
+    "double mca_probe_buf[16384];\ndouble mca_probe_sink[4];\n"
 )
 
 
@@ -166,7 +176,9 @@ def probe_source(text: str, kind: str, count: int) -> str:
         raise ValueError(f"--probe: expected 1-512 operations per pair, got {count}")
     head, op, tail = PROBE_CODE[kind]
     # (operation q touches its own cache line, o = 8 q doubles = 64 q bytes into the buffer)
-    body = head + "".join(op.format(o=8 * q, a=q % 4, b=q % 8) for q in range(count)) + tail
+    body = (
+        head + "".join(op.format(o=8 * q, o4=32 * q, a=q % 4, b=q % 8) for q in range(count)) + tail
+    )
     return _apply(
         text,
         (

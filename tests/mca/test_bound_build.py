@@ -62,7 +62,7 @@ def test_a_changed_pair_loop_is_refused(how):
         mod.bound_source(bad)
 
 
-@pytest.mark.parametrize("kind", ["store", "vstore", "load", "add", "nop"])
+@pytest.mark.parametrize("kind", ["store", "vstore", "load", "gather", "add", "nop"])
 def test_probe_inserts_its_operations_once_per_pair(kind):
     mod = _script()
     text = (SOURCE_DIR / "pair_mca.cpp").read_text()
@@ -77,6 +77,7 @@ def test_probe_inserts_its_operations_once_per_pair(kind):
         "store": "] = R0;",
         "vstore": "_mm256_storeu_pd(",
         "load": "+= mca_probe_buf[",
+        "gather": "_mm256_i32gather_pd(",
         "add": "+= 1.0;",
         "nop": "nop\\n",
     }[kind]
