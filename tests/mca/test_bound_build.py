@@ -95,3 +95,20 @@ def test_probe_refuses_a_changed_loop_and_bad_arguments():
         mod.probe_source(text, "fma", 4)
     with pytest.raises(ValueError, match="1-512"):
         mod.probe_source(text, "store", 0)
+
+
+def test_no_staging_edits_apply_once():
+    mod = _script()
+    text = (SOURCE_DIR / "pair_mca.cpp").read_text()
+    out = mod.bound_source(text, staging=False)
+    for anchor, replacement in mod.EDITS + mod.STAGING_EDITS:
+        assert out.count(anchor) == replacement.count(anchor)
+        assert replacement in out
+    # the batch is filled once; the lanes pass 2a reads are no longer written per pair
+    assert out.count("bound_staged = true;") == 1
+    assert "B.oa0[ip] =" not in out and "B.D5[ip] =" not in out and "B.pn[ip] =" not in out
+    # what the bound still stages: indices, geometry, kind, and rp = R (EDITS)
+    assert "B.kind[ip] = sl[FS::S_KIND];" in out and "B.rp0[ip] = R0;" in out
+    # it combines with --no-partners
+    both = mod.bound_source(text, partners=False, staging=False)
+    assert "TIMING BOUND: no partner row" in both and "bound_staged" in both
