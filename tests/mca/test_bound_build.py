@@ -27,6 +27,14 @@ def _script():
     return mod
 
 
+def _assert_applied(out, edits):
+    """Every anchor of ``edits`` replaced once in ``out``."""
+    for anchor, replacement in edits:
+        # (a replacement may keep its anchor's lines after an inserted one; "" removes a line)
+        assert out.count(anchor) == replacement.count(anchor)
+        assert replacement in out
+
+
 def test_edits_apply_once_to_the_shipped_pair_loop():
     mod = _script()
     text = (SOURCE_DIR / "pair_mca.cpp").read_text()
@@ -44,10 +52,7 @@ def test_no_partners_edits_apply_once():
     mod = _script()
     text = (SOURCE_DIR / "pair_mca.cpp").read_text()
     out = mod.bound_source(text, partners=False)
-    for anchor, replacement in mod.EDITS + mod.PARTNER_EDITS:
-        # (a replacement may keep its anchor's lines after an inserted one)
-        assert out.count(anchor) == replacement.count(anchor)
-        assert replacement in out
+    _assert_applied(out, mod.EDITS + mod.PARTNER_EDITS)
     # the general path still adds into both automata (its own apply of j is the scatter's)
     assert "apply(i, true, -dx, -dy, -dz);" in out
 
@@ -101,9 +106,7 @@ def test_no_staging_edits_apply_once():
     mod = _script()
     text = (SOURCE_DIR / "pair_mca.cpp").read_text()
     out = mod.bound_source(text, staging=False)
-    for anchor, replacement in mod.EDITS + mod.STAGING_EDITS:
-        assert out.count(anchor) == replacement.count(anchor)
-        assert replacement in out
+    _assert_applied(out, mod.EDITS + mod.STAGING_EDITS)
     # the batch is filled once; the lanes pass 2a reads are no longer written per pair
     assert out.count("bound_staged = true;") == 1
     assert "B.oa0[ip] =" not in out and "B.D5[ip] =" not in out and "B.pn[ip] =" not in out
