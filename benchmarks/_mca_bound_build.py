@@ -202,6 +202,14 @@ def _apply(text: str, edits, what: str) -> str:
     return text
 
 
+def check_probe(kind: str, count: int) -> None:
+    """Raise ValueError (one line naming ``--probe``) for an unknown kind or count."""
+    if kind not in PROBE_KINDS:
+        raise ValueError(f"--probe: expected a kind in {', '.join(PROBE_KINDS)}, got {kind!r}")
+    if not 1 <= count <= 512:
+        raise ValueError(f"--probe: expected 1-512 operations per pair, got {count}")
+
+
 def probe_source(text: str, kind: str, count: int) -> str:
     """Insert ``count`` operations of ``kind`` per evaluated pair into ``pair_mca.cpp``.
 
@@ -209,8 +217,8 @@ def probe_source(text: str, kind: str, count: int) -> str:
     ----------
     text : str
         The shipped ``pair_mca.cpp``.
-    kind : {'store', 'vstore', 'load', 'add', 'nop'}
-        The operation (see the module's docstring).
+    kind : str
+        One of ``PROBE_KINDS`` (see the module's docstring).
     count : int
         Operations per evaluated pair, 1-512.
 
@@ -221,12 +229,10 @@ def probe_source(text: str, kind: str, count: int) -> str:
     AnchorError
         The anchor occurs zero or several times (the pair loop changed).
     """
-    if kind not in PROBE_KINDS:
-        raise ValueError(f"--probe: expected a kind in {', '.join(PROBE_KINDS)}, got {kind!r}")
-    if not 1 <= count <= 512:
-        raise ValueError(f"--probe: expected 1-512 operations per pair, got {count}")
+    check_probe(kind, count)
     head, op, tail = PROBE_CODE[kind]
-    # (operation q touches its own cache line, o = 8 q doubles = 64 q bytes into the buffer)
+    # (operation q touches its own cache lines: o = 8 q doubles = 64 q bytes into the buffer,
+    # a gather's four lines from o4 = 32 q)
     body = (
         head + "".join(op.format(o=8 * q, o4=32 * q, a=q % 4, b=q % 8) for q in range(count)) + tail
     )
@@ -300,6 +306,11 @@ def main(argv: list[str] | None = None) -> int:
         except ValueError:
             print(f"--probe: expected KIND:K with K an integer, got {args.probe}", file=sys.stderr)
             return 2
+        try:
+            check_probe(*probe)  # (before --out is created)
+        except ValueError as exc:
+            print(exc, file=sys.stderr)
+            return 2
     try:
         Path(args.out).mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -324,9 +335,6 @@ def main(argv: list[str] | None = None) -> int:
                 )
         except AnchorError as exc:
             print(f"mca_bound_build: {exc}", file=sys.stderr)
-            return 2
-        except ValueError as exc:
-            print(exc, file=sys.stderr)
             return 2
         try:
             so = build_plugin(Path(args.out), source_dir=src, force=True)
