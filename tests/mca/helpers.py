@@ -12,7 +12,8 @@ import numpy as np
 
 from tribolmp.lammps.decks import deck_path
 
-#: Runs the deck in a fresh interpreter and saves x, v, omega and the law's seven tallies.
+#: Runs the deck in a fresh interpreter and saves x, v, omega, the law's seven tallies and the
+#: number of pairs its fused kernel evaluated on the last step (``fused``, a diagnostic).
 _SCRIPT = textwrap.dedent(
     """
     import json, sys
@@ -24,7 +25,8 @@ _SCRIPT = textwrap.dedent(
         g = {k: np.ctypeslib.as_array(s.lmp.gather_atoms(k, 1, 3)).reshape(-1, 3).copy()
              for k in ("x", "v", "omega")}
         t = [s.lmp.extract_compute("t", 0, 1)[k] for k in range(7)]
-        np.savez(out, tallies=np.array(t), **g)
+        fused = s.lmp.extract_compute("t", 0, 1)[7] if v.get("law", "mca") == "mca" else 0.0
+        np.savez(out, tallies=np.array(t), fused=fused, **g)
     """
 )
 

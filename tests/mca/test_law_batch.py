@@ -39,11 +39,12 @@ def _perturb_diameters(data, rng: np.random.Generator, spread: float) -> None:
     data.write_text("\n".join(lines) + "\n")
 
 
-def _run(tmp_path, name, dim, n, batch, spread):
+def _run(tmp_path, name, dim, n, batch, spread, fused="yes", steps=600, **extra):
     v = block_setup("mca", dim, tmp_path / name, n=n)
     if spread:
         _perturb_diameters(tmp_path / name / "block.data", np.random.default_rng(7), spread)
-    v.update(vshear=100.0, steps=600, print_every=600, mca_batch=batch)
+    v.update(vshear=100.0, steps=steps, print_every=steps, mca_batch=batch, mca_fused=fused)
+    v.update(extra)
     return run_block(v, tmp_path / f"{name}.npz")
 
 
@@ -63,6 +64,33 @@ def test_batched_common_case_matches_general_path(lammps_available, tmp_path, di
     for key in ("x", "v", "omega"):
         # bit identity (same operations in the same order), no tolerance
         assert np.array_equal(ref[key], new[key]), f"{key} differs between the two paths"
+    assert np.array_equal(ref["tallies"], new["tallies"])
+    # which path took the common case: the fused kernel only in 3D with one radius and mass
+    assert ref["fused"] == 0
+    assert (new["fused"] > 0) == (dim == 3 and not spread), new["fused"]
+
+
+def test_fused_kernel_matches_batch(lammps_available, tmp_path):
+    """The fused kernel of the 3D common case gives the batch's numbers, bit for bit.
+
+    ``pair_style mca`` (3D, one radius and one mass) hands the common case of four pairs at a
+    time to a kernel that keeps them in AVX registers from their inputs to their sums
+    (``fused4``); ``fused no`` leaves them to the batch.  A periodic block as above,
+    but larger and sheared by ``fix deform`` with ``remap v`` (image pairs across the periodic
+    boundary, b's velocity shifted by the box's rate); the two runs must agree exactly.
+    """
+    # (8 x 8 x 8 cells, 2 048 automata: the test above, whose ramp drive does not deform the
+    # box, passed with a wrong velocity shift in the kernel, and its 4-cell block with a wrong
+    # position shift.  At 20 m/s, below rupture, every pair stays a link, so the kernel must
+    # take them all; the test above passes pairs between the paths through rupture and welding)
+    kw = dict(steps=600, drive="deform", vshear=20.0)
+    ref = _run(tmp_path, "batch", 3, 8, "yes", 0.0, fused="no", **kw)
+    new = _run(tmp_path, "fused", 3, 8, "yes", 0.0, **kw)
+    assert ref["fused"] == 0
+    assert new["fused"] == ref["tallies"][0] == 6 * len(new["x"]), (new["fused"], ref["tallies"])
+    for key in ("x", "v", "omega"):
+        # bit identity (same operations in the same order), no tolerance
+        assert np.array_equal(ref[key], new[key]), f"{key} differs between batch and kernel"
     assert np.array_equal(ref["tallies"], new["tallies"])
 
 

@@ -41,10 +41,55 @@
 #include <cstdint>
 #include <cstring>
 
+// the fused kernel of pair_loop (3D) needs AVX; without it every pair takes the batched path
+// (same numbers: both are the general path's expressions in its order)
+#if defined(__AVX__)
+#include <immintrin.h>
+#define MCA_FUSED 1
+#else
+#define MCA_FUSED 0
+#endif
+
 using namespace LAMMPS_NS;
 using namespace MCALaw;
 
 using FS = FixMCAState;
+
+#if MCA_FUSED
+namespace {
+// four pairs, one per lane (+ - * / lane by lane).  Not __m256d, which may alias anything:
+// GCC then kept the transposes' results in memory
+typedef double V4 __attribute__((vector_size(32)));
+inline V4 vb(double x) { return _mm256_set1_pd(x); }
+inline V4 vsel(V4 m, V4 t, V4 f) { return _mm256_blendv_pd(f, t, m); }    // m ? t : f
+inline V4 vlt(V4 a, V4 b) { return _mm256_cmp_pd(a, b, _CMP_LT_OQ); }    // a < b (C++'s)
+inline V4 vgt(V4 a, V4 b) { return _mm256_cmp_pd(a, b, _CMP_GT_OQ); }    // a > b
+inline V4 vne(V4 a, V4 b) { return _mm256_cmp_pd(a, b, _CMP_NEQ_UQ); }   // a != b
+inline V4 veq(V4 a, V4 b) { return _mm256_cmp_pd(a, b, _CMP_EQ_OQ); }    // a == b
+inline V4 vabs(V4 a) { return _mm256_andnot_pd(vb(-0.0), a); }
+// four rows of four <-> four columns, in registers
+inline void transpose4(V4 &a, V4 &b, V4 &c, V4 &d)
+{
+  const V4 t0 = _mm256_unpacklo_pd(a, b), t1 = _mm256_unpackhi_pd(a, b);
+  const V4 t2 = _mm256_unpacklo_pd(c, d), t3 = _mm256_unpackhi_pd(c, d);
+  a = _mm256_permute2f128_pd(t0, t2, 0x20);
+  b = _mm256_permute2f128_pd(t1, t3, 0x20);
+  c = _mm256_permute2f128_pd(t0, t2, 0x31);
+  d = _mm256_permute2f128_pd(t1, t3, 0x31);
+}
+// the last three values of a pair state entry (one more would read the next entry, or past the
+// end of psc)
+inline V4 load3(const double *p)
+{
+  return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p)), _mm_load_sd(p + 2), 1);
+}
+inline void store3(double *p, V4 v)
+{
+  _mm_storeu_pd(p, _mm256_castpd256_pd128(v));
+  _mm_store_sd(p + 2, _mm256_extractf128_pd(v, 1));
+}
+}    // namespace
+#endif
 // (psc entries leave out the tag, the first value of a slot: pair_mca.h)
 static_assert(FixMCAState::S_TAG == 0, "psc entries hold a slot without its first value");
 
@@ -86,6 +131,7 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   maxecount = 0;
   mass_uni = 0.0;
   batch_on = 1;
+  fused_on = 1;
   prune_on = 1;
   ghost_rows_read = 1;
   sperm = nullptr;
@@ -146,6 +192,10 @@ void PairMCA::settings(int narg, char **arg)
       // (the vectorised common case of pair_loop; 'no' runs every pair on the general path,
       // same numbers, for the test that the two agree)
       batch_on = utils::logical(FLERR, arg[iarg + 1], false, lmp);
+    } else if (strcmp(arg[iarg], "fused") == 0) {
+      // (the fused kernel of the 3D common case; 'no' leaves it to the batch, same numbers,
+      // for the test that the two agree and for timing)
+      fused_on = utils::logical(FLERR, arg[iarg + 1], false, lmp);
     } else if (strcmp(arg[iarg], "prune") == 0) {
       // (rebuild_cache leaves out pairs without state beyond contact plus skin; 'no' keeps
       // every neighbour, same numbers, for the test that pruning loses no contact)
@@ -629,7 +679,7 @@ void PairMCA::compute(int eflag, int vflag)
     if (atom->radius[i] != runi) runi = 0.0;
     if (atom->rmass[i] != mass_uni) mass_uni = 0.0;
   }
-  double tally[3] = {0.0, 0.0, 0.0};
+  double tally[4] = {0.0, 0.0, 0.0, 0.0};
   if (runi > 0.0) {
     if (dim == 2) {
       if (advance) pair_loop<2, true, true>(init_links, tally, runi);
@@ -648,6 +698,7 @@ void PairMCA::compute(int eflag, int vflag)
     }
   }
   const double tally_links = tally[0], tally_cross = tally[1], tally_contacts = tally[2];
+  const double tally_fused = tally[3];
 
   // per automaton, in one pass over its state row: stress and plastic update, the tallies,
   // and the committed step's pair forces.  Those of a committed step are stored: a
@@ -678,6 +729,7 @@ void PairMCA::compute(int eflag, int vflag)
   pvector[4] = lb;
   pvector[5] = wf;
   pvector[6] = tally_contacts;
+  pvector[7] = tally_fused;
 }
 
 /* ----------------------------------------------------------------------
@@ -739,7 +791,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   const bool muni = UNI && mass_uni > 0.0;
   double cd_u = 0.0, cr_u = 0.0;
   if (muni) link_damping(mat, mass_uni, mass_uni, runi, runi, A_u, dbar_u, cd_u, cr_u);
-  double tally_links = 0.0, tally_cross = 0.0, tally_contacts = 0.0;
+  double tally_links = 0.0, tally_cross = 0.0, tally_contacts = 0.0, tally_fused = 0.0;
 
   int *ilist = list->ilist;
   bool any_mirror = false;
@@ -762,13 +814,14 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   // change sign) and the same n (x) F_e; the torque of the tangential force is r n x F
   auto scatter = [&](int i, int j, bool jlocal, bool i_is_a, bool cross, int kind, double R0,
                      double R1, double R2, const double *Fv, const double *Fsv, const double *Msv,
-                     const double *nxF, const double *Lv) {
+                     const double *nxF, const double *Lv) __attribute__((always_inline)) {
     const bool attached = (kind == FS::ATTACH);
     const bool linked = (kind == FS::LINK || kind == FS::WELD || attached);
     const bool counted = linked && !attached;    // attachments (to rigid layers) are not links
     const double sg = i_is_a ? 1.0 : -1.0;
     const double dx = sg * R0, dy = sg * R1, dz = sg * R2;
-    auto apply = [&](int q, bool plus, double delx, double dely, double delz) {
+    auto apply = [&](int q, bool plus, double delx, double dely, double delz)
+                     __attribute__((always_inline)) {
       const double rq = UNI ? runi : radius[q];
       // (force, torque and sums in q's row of sacc: added to atom->f, torque in compute)
       double *acc = sacc0 + SR * q;
@@ -839,26 +892,20 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         tally_contacts += 1.0;
     }
   };
-  // (a batch may end inside the pairs of an automaton: jj0 is where the next one resumes)
-  int ii = 0, jj0 = 0;
-  while (ii < inum) {
+  // pass 1a for one pair of i (entry jj of its evaluation list): the relative position and
+  // velocities (a pair with no state that does not touch is left out), its state and its
+  // partners' inputs, into the batch
   int npre = 0;
-  for (; ii < inum && npre < NBATCH; ii++) {
-    const int i = ilist[ii];
-    // the pairs i evaluates (rebuild_cache): partner, orientation, image and body flags
-    const bigint eoff = cacheoff[i];
-    const int jnum = ecount[i];
-    const int *ej_i = &ej[eoff], *ef_i = &eflag[eoff];
-    int *cache_i = &cacheflat[eoff];
-    // (the pair states are read from psc in the lists' order: one stream that the hardware
-    // prefetcher follows)
-    const double *psc_i = psc + eoff * NP - 1;
-
-    // pass 1a: the relative position and velocities of every pair of i that is evaluated
-    // (a pair with no state that does not touch is left out), its state and its partners'
-    // inputs, into the batch
-    int jj = jj0;
-    for (; jj < jnum && npre < NBATCH; jj++) {
+  const bool common = ADV && !init_links && batch_on;
+  // (stage and flush are inlined where the driver below calls them: as calls through their
+  // closures the 2D pair loop, which has no fused kernel, ran 10 % slower)
+  auto stage = [&](const int i, const bigint eoff, const int jj) __attribute__((always_inline)) {
+      // the pairs i evaluates (rebuild_cache): partner, orientation, image and body flags
+      const int *ej_i = &ej[eoff], *ef_i = &eflag[eoff];
+      const int *cache_i = &cacheflat[eoff];
+      // (the pair states are read from psc in the lists' order: one stream that the hardware
+      // prefetcher follows)
+      const double *psc_i = psc + eoff * NP - 1;
       const int j = ej_i[jj];
       const int ef = ef_i[jj];
       const double dbar = UNI ? dbar_u : radius[i] + radius[j];
@@ -923,7 +970,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       const double rsq = D3 ? R0 * R0 + R1 * R1 + R2 * R2 : R0 * R0 + R1 * R1;
       const int k1 = cache_i[jj];
       // a pair with no state that does not touch: nothing to do (initial links aside)
-      if (k1 < 0 && !init_links && rsq >= dbar * dbar) continue;
+      if (k1 < 0 && !init_links && rsq >= dbar * dbar) return;
       const int ip = npre++;
       B.i[ip] = i;
       B.ia[ip] = i_is_a ? 1.0 : 0.0;
@@ -993,14 +1040,9 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
         B.kind[ip] = FS::FREE;    // (not the common case: pass 2b's general path)
         B.xi0[ip] = B.xi1[ip] = B.xi2[ip] = 0.0;
       }
-    }
-    if (jj < jnum) {    // the batch is full: the rest of i's pairs start the next one
-      jj0 = jj;
-      break;
-    }
-    jj0 = 0;
-  }
-
+  };
+  // passes 1b, 2a and 2b of the staged pairs
+  auto flush = [&]() __attribute__((always_inline)) {
   // pass 1b: the geometry of the batch's pairs (square roots and divisions in vectorised loops)
   batch_geometry<DIM, UNI>(npre, runi);
 
@@ -1009,7 +1051,6 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   // without branches over the batch's arrays, which the compiler vectorises.  The same
   // expressions in the same order as the general path (pass 2b), so the same numbers; a pair
   // outside the common case (elig = 0) takes the general path with its state untouched
-  const bool common = ADV && !init_links && batch_on;
   if (common) batch_common<DIM, UNI>(npre, runi);
 
   // pass 2b: the law, pair by pair, in the order of the pairs (so that the sums into forces,
@@ -1317,6 +1358,98 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
 
       tail(Fe0, Fe1, Fe2, Fd0, Fd1, Fd2, Ma0, Ma1, Ma2, kind);
   }
+  npre = 0;
+  };
+  // the fused kernel (fused4) where it applies: 3D, one radius and one mass, a committed
+  // step, no per-atom tallies
+  const bool fused = MCA_FUSED && D3 && UNI && common && muni && !peratom && fused_on;
+  FusedCtx fctx;
+  fctx.ilist = ilist;
+  fctx.inum = inum;
+  fctx.h = h;
+  fctx.hr = hr;
+  fctx.vremap = vremap;
+  fctx.vglobal = vglobal;
+  fctx.dt = dt;
+  fctx.G2 = G2;
+  fctx.alpha = alpha;
+  fctx.runi = runi;
+  fctx.dbar_u = dbar_u;
+  fctx.idbar_u = 1.0 / (runi + runi);    // (batch_geometry's)
+  fctx.A_u = A_u;
+  fctx.kr_u = kr_u;
+  fctx.cd_u = cd_u;
+  fctx.cr_u = cr_u;
+  fctx.s_link = mat.s0;    // (batch_common's)
+  fctx.s_weld = mat.wfac * mat.s0;
+  // (its tallies and the virial pass through a copy: a local whose address is taken lives
+  // in memory for the whole loop)
+  auto fused_step = [&](int &ii_, int &jj_) __attribute__((always_inline)) -> int {
+    FusedIO io;
+    io.ii = ii_;
+    io.jj = jj_;
+    io.links = io.cross = 0.0;
+    io.local = false;
+    if (vglobal)
+      for (int c = 0; c < 6; c++) io.vir[c] = vir[c];
+    fctx.npre = npre;
+    const int r = fused4(fctx, io);
+    if (r == 1) {
+      ii_ = io.ii;
+      jj_ = io.jj;
+      tally_links += io.links;
+      tally_cross += io.cross;
+      tally_fused += 4.0;
+      if (io.local) any_mirror = true;
+      if (vglobal)
+        for (int c = 0; c < 6; c++) vir[c] = io.vir[c];
+    }
+    return r;
+  };
+  // the pairs in the order of the evaluation lists, automaton ii, its entry jj.  (Each lambda
+  // is inlined at its one call site: called through a closure, the locals it shares --
+  // tallies, virial, npre -- live in memory, and the 2D pair loop ran 8-10 % slower)
+  if (fused) {
+    // the kernel takes the next four pairs where it can, the batch stages the others
+    int ii = 0, jj = 0;
+    for (;;) {
+      while (ii < inum && jj >= ecount[ilist[ii]]) {
+        ii++;
+        jj = 0;
+      }
+      const bool done = ii >= inum;
+      bool full = false;
+      if (!done) {
+        const int r = fused_step(ii, jj);
+        if (r == 0) {
+          const int i = ilist[ii];
+          stage(i, cacheoff[i], jj);
+          jj++;
+          full = npre == NBATCH;
+        } else
+          full = r == 2;
+      }
+      if ((done || full) && npre) flush();
+      if (done) break;
+    }
+  } else {
+    // (a batch may end inside the pairs of an automaton: jj0 is where the next one resumes)
+    int ii = 0, jj0 = 0;
+    while (ii < inum) {
+      for (; ii < inum && npre < NBATCH; ii++) {
+        const int i = ilist[ii];
+        const bigint eoff = cacheoff[i];
+        const int jnum = ecount[i];
+        int jj = jj0;
+        for (; jj < jnum && npre < NBATCH; jj++) stage(i, eoff, jj);
+        if (jj < jnum) {    // the batch is full: the rest of i's pairs start the next one
+          jj0 = jj;
+          break;
+        }
+        jj0 = 0;
+      }
+      flush();
+    }
   }
   if (any_mirror) mirrors_pending = 1;
   psc_pending = 1;
@@ -1325,6 +1458,391 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   tally[0] = tally_links;
   tally[1] = tally_cross;
   tally[2] = tally_contacts;
+  tally[3] = tally_fused;
+}
+
+/* ----------------------------------------------------------------------
+   the fused kernel of pair_loop (3D, one radius and one mass, a committed
+   step, no per-atom tallies).
+   The fused kernel (3D, one radius and one mass, a committed step, no per-atom tallies):
+   the next four pairs of the evaluation lists -- possibly of several automata -- when all
+   four are in the common case, one pair per lane of AVX registers from their inputs to their
+   sums, without the batch's arrays.  Inputs are loaded as rows (the partners' rows of xo, the
+   pair states) and transposed in registers, results are transposed back into rows of the
+   pair state and of sacc and added row by row.  The batch stages every value of a pair in
+   memory and reads it back, which made the 3D pair loop bound by its stores (docs/mca.md).
+   The expressions and their order are batch_geometry's and batch_common's, the sums are
+   formed pair by pair in the lists' order, so the numbers are the general path's
+   (tests/mca/test_law_batch.py).  Returns false, with nothing written, when a pair is not in
+   the common case (no state, not linked, a mirror slot to find, a link that breaks): those
+   take the batch.
+  const bool fused = MCA_FUSED && D3 && UNI && common && muni && !peratom && fused_on;
+  const double idbar_u = 1.0 / (runi + runi);
+  const double s_link = mat.s0, s_weld = mat.wfac * mat.s0;
+   A function of its own (not inlined), so that its registers are its own: inlined into the
+   pair loop it spilled about three times as many vectors.
+------------------------------------------------------------------------- */
+
+int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
+{
+#if MCA_FUSED
+  const int *ilist = C.ilist;
+  const double *xo0 = xo[0];
+  double *sacc0 = sacc[0];
+  const double *h = C.h, *hr = C.hr;
+  const double dt = C.dt, G2 = C.G2, alpha = C.alpha, runi = C.runi, dbar_u = C.dbar_u;
+  const double idbar_u = C.idbar_u, A_u = C.A_u, kr_u = C.kr_u, cd_u = C.cd_u, cr_u = C.cr_u;
+  const double s_link = C.s_link, s_weld = C.s_weld;
+    int li[4], lj[4], lef[4];
+    bigint le[4];
+    int cii = io.ii, cjj = io.jj;
+    bool anyimg = false, anylocal = false;
+    for (int l = 0; l < 4; l++) {
+      int q = ilist[cii];
+      while (cjj >= ecount[q]) {
+        if (++cii >= C.inum) return 0;
+        cjj = 0;
+        q = ilist[cii];
+      }
+      const bigint e = cacheoff[q] + cjj;
+      if (cacheflat[e] < 0) return 0;
+      const double kd = psc[e * NP + (FS::S_KIND - 1)];
+      if (!(kd == FS::LINK || kd == FS::WELD || kd == FS::ATTACH)) return 0;
+      const int ef = eflag[e];
+      if ((ef & E_LOCAL) && mirrorflat[e] < 0) return 0;
+      li[l] = q;
+      lj[l] = ej[e];
+      lef[l] = ef;
+      le[l] = e;
+      anyimg = anyimg || (ef & E_IMAGE);
+      anylocal = anylocal || (ef & E_LOCAL);
+      cjj++;
+    }
+    const V4 zero = vb(0.0), half = vb(0.5);
+    const V4 mIA = vne(_mm256_setr_pd(lef[0] & E_IA, lef[1] & E_IA, lef[2] & E_IA, lef[3] & E_IA), zero);
+    // the rows of xo of a and b (i is a where E_IA: pass 1a's canonical orientation): x v omega
+    // X dep (pair_mca.h, R_*), four blocks of four.  Per lane, b's row minus a's gives R, dV and
+    // b's rotation rate relative to a's; the rows' sum the symmetric inputs, 0.5 (X_a + X_b) and
+    // the plastic strain increments (a sum: the same numbers as pass 1a's); r (omega_a +
+    // omega_b) the rotation term of the contact point (ra = rb = runi).  Then one transpose
+    // per block gives one vector per quantity, one lane per pair
+    static_assert(R_X == 0 && R_V == 3 && R_OM == 6 && R_XM == 9 && R_DEP == 10 && PR == 16,
+                  "the fused kernel reads rows of xo in blocks of four");
+    const double *pa[4], *pb[4];
+    for (int l = 0; l < 4; l++) {
+      const bool ia = lef[l] & E_IA;
+      pa[l] = xo0 + PR * (ia ? li[l] : lj[l]);
+      pb[l] = xo0 + PR * (ia ? lj[l] : li[l]);
+    }
+    // periodic images: pass 1a's shifts (b's position, and its velocity with fix deform's
+    // remap v), lane by lane
+    alignas(32) double sR[3][4], sV[3][4], im[4];
+    if (anyimg) {
+      for (int l = 0; l < 4; l++) {
+        im[l] = (lef[l] & E_IMAGE) ? 1.0 : 0.0;
+        for (int c = 0; c < 3; c++) sR[c][l] = sV[c][l] = 0.0;
+        if (!(lef[l] & E_IMAGE)) continue;
+        int jimg[3];
+        unpack_image(eimg[le[l]], jimg);
+        const bool i_is_a = lef[l] & E_IA;
+        const double n0 = i_is_a ? jimg[0] : -jimg[0], n1 = i_is_a ? jimg[1] : -jimg[1];
+        const double n2 = i_is_a ? jimg[2] : -jimg[2];
+        sR[0][l] = (n0 * h[0] + n1 * h[5] + n2 * h[4]);
+        sR[1][l] = (n1 * h[1] + n2 * h[3]);
+        sR[2][l] = n2 * h[2];
+        sV[0][l] = n0 * hr[0] + n1 * hr[5] + n2 * hr[4];
+        sV[1][l] = n1 * hr[1] + n2 * hr[3];
+        sV[2][l] = n2 * hr[2];
+      }
+    }
+    const bool vshift = anyimg && C.vremap;
+    // block 0 (x, v0): R, dV0
+    V4 R0, R1, R2, dV0;
+    {
+      // (named vectors, not arrays: GCC keeps an array of vectors in memory)
+      auto row = [&](int l) __attribute__((always_inline)) {
+        V4 bv = _mm256_loadu_pd(pb[l]);
+        // ((V_b + shift) - V_a, pass 1a's order)
+        if (vshift && im[l] != 0.0)
+          bv = _mm256_blend_pd(bv, bv + _mm256_setr_pd(0.0, 0.0, 0.0, sV[0][l]), 0x8);
+        return bv - _mm256_loadu_pd(pa[l]);
+      };
+      R0 = row(0);
+      R1 = row(1);
+      R2 = row(2);
+      dV0 = row(3);
+      transpose4(R0, R1, R2, dV0);
+      if (anyimg) {
+        // ((x_b - x_a) + shift)
+        const V4 mIM = vne(_mm256_load_pd(im), zero);
+        R0 = vsel(mIM, R0 + _mm256_load_pd(sR[0]), R0);
+        R1 = vsel(mIM, R1 + _mm256_load_pd(sR[1]), R1);
+        R2 = vsel(mIM, R2 + _mm256_load_pd(sR[2]), R2);
+      }
+    }
+    // pass 1b (batch_geometry)
+    const V4 rsq = R0 * R0 + R1 * R1 + R2 * R2;
+    const V4 r = _mm256_sqrt_pd(rsq);
+    const V4 ir = vb(1.0) / r;
+    const V4 n0 = R0 * ir, n1 = R1 * ir, n2 = R2 * ir;
+    const V4 idbar = vb(idbar_u);
+    const V4 eraw = r * idbar - vb(1.0);
+    const V4 vrq = vb(runi);
+    // block 1 (v1 v2, omega0 omega1): dV1 dV2, dom0 dom1 (omega_b - omega_a), ws0 ws1
+    V4 dV1, dV2, dom0, dom1, ws0, ws1;
+    {
+      auto row = [&](int l, V4 &w) __attribute__((always_inline)) {
+        const V4 av = _mm256_loadu_pd(pa[l] + 4);
+        V4 bv = _mm256_loadu_pd(pb[l] + 4);
+        w = vrq * av + vrq * bv;
+        if (vshift && im[l] != 0.0)
+          bv = _mm256_blend_pd(bv, bv + _mm256_setr_pd(sV[1][l], sV[2][l], 0.0, 0.0), 0x3);
+        return bv - av;
+      };
+      V4 w0, w1, w2, w3;
+      dV1 = row(0, w0);
+      dV2 = row(1, w1);
+      dom0 = row(2, w2);
+      dom1 = row(3, w3);
+      transpose4(dV1, dV2, dom0, dom1);
+      transpose4(w0, w1, w2, w3);
+      ws0 = w2;
+      ws1 = w3;
+    }
+    // block 2 (omega2, X, dep xx yy): ws2 dom2, Xbar, D0 D1
+    V4 dom2, ws2, Xbar, D0, D1;
+    {
+      auto row = [&](int l, V4 &g) __attribute__((always_inline)) {
+        const V4 av = _mm256_loadu_pd(pa[l] + 8), bv = _mm256_loadu_pd(pb[l] + 8);
+        g = bv - av;
+        return V4(_mm256_blend_pd(av + bv, vrq * av + vrq * bv, 0x1));
+      };
+      V4 g0, g1, g2, g3;
+      V4 c0 = row(0, g0), c1 = row(1, g1), c2 = row(2, g2), c3 = row(3, g3);
+      transpose4(c0, c1, c2, c3);
+      ws2 = c0;
+      Xbar = half * c1;
+      D0 = half * c2;
+      D1 = half * c3;
+      dom2 = _mm256_permute2f128_pd(_mm256_unpacklo_pd(g0, g1), _mm256_unpacklo_pd(g2, g3), 0x20);
+    }
+    // the contact point's rotation term and the relative velocity (batch_common)
+    const V4 wxn0 = ws1 * n2 - ws2 * n1, wxn1 = ws2 * n0 - ws0 * n2, wxn2 = ws0 * n1 - ws1 * n0;
+    const V4 vr0 = dV0 - wxn0, vr1 = dV1 - wxn1, vr2 = dV2 - wxn2;
+    // block 3 (dep zz xy xz yz), and the plastic part of the pair's strain increment (applied
+    // below, after the tangential update, in batch_common's order)
+    V4 pl, nDn, cor0, cor1, cor2;
+    {
+      auto row = [&](int l) __attribute__((always_inline)) {
+        return V4(_mm256_loadu_pd(pa[l] + 12) + _mm256_loadu_pd(pb[l] + 12));
+      };
+      V4 c0 = row(0), c1 = row(1), c2 = row(2), c3 = row(3);
+      transpose4(c0, c1, c2, c3);
+      const V4 D2 = half * c0, D3xy = half * c1, D4 = half * c2, D5 = half * c3;
+      const V4 dsum = vabs(D0) + vabs(D1) + vabs(D2) + vabs(D3xy) + vabs(D4) + vabs(D5);
+      const V4 Dn0 = D0 * n0 + D3xy * n1 + D4 * n2, Dn1 = D3xy * n0 + D1 * n1 + D5 * n2,
+               Dn2 = D4 * n0 + D5 * n1 + D2 * n2;
+      nDn = n0 * Dn0 + n1 * Dn1 + n2 * Dn2;
+      pl = vgt(dsum, zero);
+      const V4 vdbar = vb(dbar_u);
+      cor0 = vdbar * (Dn0 - nDn * n0);
+      cor1 = vdbar * (Dn1 - nDn * n1);
+      cor2 = vdbar * (Dn2 - nDn * n2);
+    }
+    // the pair states: kind pn xi th rp (psc entries, pair_mca.h)
+    const double *sp[4] = {psc + le[0] * NP, psc + le[1] * NP, psc + le[2] * NP, psc + le[3] * NP};
+    V4 kind = _mm256_loadu_pd(sp[0]), pn = _mm256_loadu_pd(sp[1]), xi0 = _mm256_loadu_pd(sp[2]),
+       xi1 = _mm256_loadu_pd(sp[3]);
+    transpose4(kind, pn, xi0, xi1);
+    V4 xi2 = _mm256_loadu_pd(sp[0] + 4), th0 = _mm256_loadu_pd(sp[1] + 4),
+       th1 = _mm256_loadu_pd(sp[2] + 4), th2 = _mm256_loadu_pd(sp[3] + 4);
+    transpose4(xi2, th0, th1, th2);
+    {
+      const V4 xn = xi0 * n0 + xi1 * n1 + xi2 * n2;
+      const V4 m0 = xi0 * xi0 + xi1 * xi1 + xi2 * xi2;
+      const V4 proj = _mm256_and_pd(vne(xn, zero), vgt(m0, zero));
+      const V4 q = xn * xn / m0;
+      V4 sc = vb(1.0) + q * (vb(0.5) + vb(0.375) * q);
+      const V4 series = vlt(q, vb(1e-4));
+      // (the square root only where a lane needs it: one division and one square root less
+      // per four pairs in the common case, whose normals turn by ~1e-6 rad per step)
+      if (_mm256_movemask_pd(_mm256_andnot_pd(series, proj)))
+        sc = vsel(series, sc, vsel(vlt(q, vb(1.0)), _mm256_sqrt_pd(vb(1.0) / (vb(1.0) - q)), zero));
+      // pass 2a (batch_common): the projection
+      xi0 = vsel(proj, sc * (xi0 - xn * n0), xi0);
+      xi1 = vsel(proj, sc * (xi1 - xn * n1), xi1);
+      xi2 = vsel(proj, sc * (xi2 - xn * n2), xi2);
+    }
+    const V4 vdt = vb(dt);
+    {
+      V4 rp0 = load3(sp[0] + 8), rp1 = load3(sp[1] + 8), rp2 = load3(sp[2] + 8),
+         rpx = load3(sp[3] + 8);
+      transpose4(rp0, rp1, rp2, rpx);
+      const V4 du0 = R0 - rp0 - vdt * wxn0, du1 = R1 - rp1 - vdt * wxn1,
+               du2 = R2 - rp2 - vdt * wxn2;
+      const V4 dun = du0 * n0 + du1 * n1 + du2 * n2;
+      xi0 = xi0 + (du0 - dun * n0);
+      xi1 = xi1 + (du1 - dun * n1);
+      xi2 = xi2 + (du2 - dun * n2);
+    }
+    pn = vsel(pl, pn + nDn, pn);
+    xi0 = vsel(pl, xi0 - cor0, xi0);
+    xi1 = vsel(pl, xi1 - cor1, xi1);
+    xi2 = vsel(pl, xi2 - cor2, xi2);
+    th0 = th0 + vdt * dom0;
+    th1 = th1 + vdt * dom1;
+    th2 = th2 + vdt * dom2;
+    const V4 vG2 = vb(G2);
+    const V4 sf = vG2 * idbar;
+    const V4 sn = vG2 * (eraw - pn) + vb(alpha) * Xbar;
+    const V4 t0 = sf * xi0, t1 = sf * xi1, t2v = sf * xi2;
+    // (the pair's forces before the rupture test, which rarely fails: fewer values live)
+    const V4 vA = vb(A_u), vcd = vb(cd_u), vcr = vb(cr_u), vkr = vb(kr_u);
+    const V4 Fe0 = vA * (sn * n0 + t0), Fe1 = vA * (sn * n1 + t1), Fe2 = vA * (sn * n2 + t2v);
+    const V4 F0 = Fe0 + vcd * vr0, F1 = Fe1 + vcd * vr1, F2 = Fe2 + vcd * vr2;
+    const V4 si = vsel(mIA, vb(1.0), vb(-1.0));
+    const V4 Ms0 = si * (vkr * th0 + vcr * dom0), Ms1 = si * (vkr * th1 + vcr * dom1),
+             Ms2 = si * (vkr * th2 + vcr * dom2);
+    {
+      const V4 t2 = t0 * t0 + t1 * t1 + t2v * t2v;
+      const V4 strength = vsel(veq(kind, vb(FS::LINK)), vb(s_link), vb(s_weld));
+      const V4 tp = vsel(vgt(sn, zero), sn, zero);
+      const V4 brk = _mm256_and_pd(vne(kind, vb(FS::ATTACH)),
+                                   vgt(tp * tp + vb(3.0) * t2, strength * strength));
+      if (_mm256_movemask_pd(brk)) return 0;    // a link breaks: the batch's general path
+    }
+    if (C.npre) return 2;    // (the staged pairs come first in the lists' order: flush them)
+    static_assert(FS::S_PN == FS::S_KIND + 1 && FS::S_XI == FS::S_KIND + 2 &&
+                      FS::S_TH == FS::S_KIND + 5 && FS::S_RP == FS::S_KIND + 8 && NP == 11,
+                  "the fused kernel moves pair states in blocks of four");
+    // the advanced state, back into the entries (kind unchanged), four values at a time
+    {
+      V4 c0 = kind, c1 = pn, c2 = xi0, c3 = xi1;
+      transpose4(c0, c1, c2, c3);
+      _mm256_storeu_pd(psc + le[0] * NP, c0);
+      _mm256_storeu_pd(psc + le[1] * NP, c1);
+      _mm256_storeu_pd(psc + le[2] * NP, c2);
+      _mm256_storeu_pd(psc + le[3] * NP, c3);
+    }
+    {
+      V4 c0 = xi2, c1 = th0, c2 = th1, c3 = th2;
+      transpose4(c0, c1, c2, c3);
+      _mm256_storeu_pd(psc + le[0] * NP + 4, c0);
+      _mm256_storeu_pd(psc + le[1] * NP + 4, c1);
+      _mm256_storeu_pd(psc + le[2] * NP + 4, c2);
+      _mm256_storeu_pd(psc + le[3] * NP + 4, c3);
+    }
+    if (C.vglobal) {
+      // scatter's global virial, pair by pair in order
+      alignas(32) double f0[4], f1[4], f2[4], x0[4], x1[4], x2[4];
+      _mm256_store_pd(f0, F0);
+      _mm256_store_pd(f1, F1);
+      _mm256_store_pd(f2, F2);
+      _mm256_store_pd(x0, R0);
+      _mm256_store_pd(x1, R1);
+      _mm256_store_pd(x2, R2);
+      for (int l = 0; l < 4; l++) {
+        const double w = (lef[l] & E_LOCAL) ? -1.0 : -0.5;
+        const double G0 = w * f0[l], G1 = w * f1[l], G2w = w * f2[l];
+        io.vir[0] += x0[l] * G0;
+        io.vir[1] += x1[l] * G1;
+        io.vir[3] += x0[l] * G1;
+        io.vir[2] += x2[l] * G2w;
+        io.vir[4] += x0[l] * G2w;
+        io.vir[5] += x1[l] * G2w;
+      }
+    }
+    {
+      V4 c0 = R0, c1 = R1, c2 = R2, c3 = R2;
+      transpose4(c0, c1, c2, c3);
+      store3(psc + le[0] * NP + 8, c0);
+      store3(psc + le[1] * NP + 8, c1);
+      store3(psc + le[2] * NP + 8, c2);
+      store3(psc + le[3] * NP + 8, c3);
+    }
+    // rows of sacc (C_*: F0 F1 T2 L0 | L1 L3 NL NC | F2 T0 T1 L2 | L4 L5 - -): one block of
+    // four at a time, added to i's row and, when j is local, to j's (F_b = -F_a, M_b = -M_a:
+    // acc - x is acc + (-x)), lane by lane in the lists' order
+    static_assert(C_F0 == 0 && C_F1 == 1 && C_T2 == 2 && C_L0 == 3 && C_L1 == 4 && C_L3 == 5 &&
+                      C_NL == 6 && C_NC == 7 && C_F2 == 8 && C_T0 == 9 && C_T1 == 10 &&
+                      C_L2 == 11 && C_L4 == 12 && C_L5 == 13 && SR == 16,
+                  "the fused kernel adds sacc rows in blocks of four");
+    auto add_rows = [&](int off, V4 c0, V4 c1, V4 c2, V4 c3, bool jsame, V4 d0, V4 d1, V4 d2,
+                        V4 d3) __attribute__((always_inline)) {
+      transpose4(c0, c1, c2, c3);
+      if (jsame) {
+        d0 = c0;
+        d1 = c1;
+        d2 = c2;
+        d3 = c3;
+      } else if (anylocal)
+        transpose4(d0, d1, d2, d3);
+      // (i's row stays in a register while consecutive lanes share i; j differs from the i of
+      // its own lane, and a later lane's i reads its row after this lane's j wrote it)
+      double *a0 = sacc0 + SR * li[0] + off;
+      V4 acc = _mm256_loadu_pd(a0) + c0;
+      auto jadd = [&](int l, V4 d) __attribute__((always_inline)) {
+        if (lef[l] & E_LOCAL) {
+          double *aj = sacc0 + SR * lj[l] + off;
+          _mm256_storeu_pd(aj, _mm256_loadu_pd(aj) + d);
+        }
+      };
+      auto iadd = [&](int l, V4 c) __attribute__((always_inline)) {
+        if (li[l] == li[l - 1])
+          acc = acc + c;
+        else {
+          _mm256_storeu_pd(sacc0 + SR * li[l - 1] + off, acc);
+          acc = _mm256_loadu_pd(sacc0 + SR * li[l] + off) + c;
+        }
+      };
+      jadd(0, d0);
+      iadd(1, c1);
+      jadd(1, d1);
+      iadd(2, c2);
+      jadd(2, d2);
+      iadd(3, c3);
+      jadd(3, d3);
+      _mm256_storeu_pd(sacc0 + SR * li[3] + off, acc);
+    };
+    {
+      const V4 Fs0 = si * F0, Fs1 = si * F1, T2 = vrq * (n0 * F1 - n1 * F0);
+      const V4 L0 = vrq * (n0 * Fe0);
+      add_rows(C_F0, Fs0, Fs1, T2 + Ms2, L0, false, -Fs0, -Fs1, T2 - Ms2, L0);
+    }
+    {
+      // link counts: every pair here is linked; attachments are not links
+      const V4 notatt = vne(kind, vb(FS::ATTACH));
+      const V4 cross = _mm256_setr_pd(!(lef[0] & E_SAME), !(lef[1] & E_SAME),
+                                      !(lef[2] & E_SAME), !(lef[3] & E_SAME));
+      const V4 L1 = vrq * (n1 * Fe1), L3 = vrq * (half * (n0 * Fe1 + n1 * Fe0));
+      add_rows(C_L1, L1, L3, _mm256_and_pd(notatt, vb(1.0)), _mm256_and_pd(notatt, cross), true,
+               zero, zero, zero, zero);
+      const int na = _mm256_movemask_pd(notatt);
+      for (int l = 0; l < 4; l++)
+        if ((lef[l] & E_IA) && (na >> l & 1)) {
+          io.links += 1.0;
+          if (!(lef[l] & E_SAME)) io.cross += 1.0;
+        }
+    }
+    {
+      const V4 Fs2 = si * F2;
+      const V4 T0 = vrq * (n1 * F2 - n2 * F1), T1 = vrq * (n2 * F0 - n0 * F2);
+      const V4 L2 = vrq * (n2 * Fe2);
+      add_rows(C_F2, Fs2, T0 + Ms0, T1 + Ms1, L2, false, -Fs2, T0 - Ms0, T1 - Ms1, L2);
+    }
+    {
+      const V4 L4 = vrq * (half * (n0 * Fe2 + n2 * Fe0)), L5 = vrq * (half * (n1 * Fe2 + n2 * Fe1));
+      add_rows(C_L4, L4, L5, zero, zero, true, zero, zero, zero, zero);
+    }
+    if (anylocal) io.local = true;
+  io.ii = cii;
+  io.jj = cjj;
+  return 1;
+#else
+  (void) C;
+  (void) io;
+  return 0;
+#endif
 }
 
 /* ----------------------------------------------------------------------

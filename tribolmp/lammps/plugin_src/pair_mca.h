@@ -10,7 +10,7 @@
 
    Syntax:
      pair_style mca [link_init same|all|none|bonds] [link_tol X] [attach_type N] [cutoff F]
-                    [batch yes|no] [prune yes|no]
+                    [batch yes|no] [fused yes|no] [prune yes|no]
      pair_coeff * * G nu sigma_y sigma_0 H mu eta weld_factor weld_onset damp
 ------------------------------------------------------------------------- */
 
@@ -46,7 +46,9 @@ class PairMCA : public Pair {
   double memory_usage() override;
   void sync_mirrors();
 
-  enum { NTALLY = 7 };
+  // (compute pair: links, cross links now, cross formed, cross broken, links broken, welds
+  // formed, contacts, and the pairs the fused kernel evaluated -- a diagnostic of the step)
+  enum { NTALLY = 8 };
 
  protected:
   MCALaw::Material mat;
@@ -166,6 +168,7 @@ class PairMCA : public Pair {
   double mass_uni;      // the mass of every automaton (compute), or 0 if they differ
   int maxecount;        // the largest number of pairs of one automaton (rebuild_cache)
   int batch_on;         // 1: pass 2a computes the common case (pair_style keyword batch)
+  int fused_on;         // 1: pair_loop's fused kernel takes the 3D common case (keyword fused)
   int prune_on;         // 1: the evaluation lists leave out pairs that cannot touch (prune)
   int ghost_rows_read;  // 1: some rank's evaluation lists read a ghost's row (rebuild_cache)
 
@@ -195,6 +198,21 @@ class PairMCA : public Pair {
   template <int DIM, bool ADV, bool UNI> void pair_loop(bool init_links, double *tally, double runi);
   template <int DIM, bool UNI> void batch_common(int n, double runi);
   template <int DIM, bool UNI> void batch_geometry(int n, double runi);
+  // the fused kernel of pair_loop: its constants, and what it reads and returns of the loop's
+  // state (cursor, virial, tallies)
+  struct FusedCtx {
+    const int *ilist;
+    int inum, npre;
+    const double *h, *hr;
+    bool vremap, vglobal;
+    double dt, G2, alpha, runi, dbar_u, idbar_u, A_u, kr_u, cd_u, cr_u, s_link, s_weld;
+  };
+  struct FusedIO {
+    int ii, jj;
+    bool local;
+    double links, cross, vir[6];
+  };
+  __attribute__((noinline)) int fused4(const FusedCtx &C, FusedIO &io);
 };
 
 }    // namespace LAMMPS_NS
