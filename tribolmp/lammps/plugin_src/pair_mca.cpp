@@ -112,6 +112,8 @@ PairMCA::PairMCA(LAMMPS *lmp) :
   eimg = nullptr;
   cacheoff = nullptr;
   ecount = nullptr;
+  eown = nullptr;
+  nentries = 0;
   ej = nullptr;
   eflag = nullptr;
   ncached = 0;
@@ -149,6 +151,7 @@ PairMCA::~PairMCA()
   memory->destroy(ecount);
   memory->destroy(ej);
   memory->destroy(eflag);
+  memory->destroy(eown);
   memory->destroy(sacc);
   memory->destroy(xo);
   memory->destroy(gimg);
@@ -353,7 +356,10 @@ void PairMCA::rebuild_cache()
     memory->destroy(cacheflat);
     memory->destroy(mirrorflat);
     memory->destroy(eimg);
+    memory->destroy(eown);
     memory->create(ej, maxflat, "pair:mca:ej");
+    // (three entries more: the fused kernel reads the lists' ints four entries at a time)
+    memory->create(eown, maxflat + 3, "pair:mca:eown");
     memory->create(eimg, maxflat, "pair:mca:eimg");
     memory->create(eflag, maxflat, "pair:mca:eflag");
     memory->create(cacheflat, maxflat, "pair:mca:cacheflat");
@@ -429,6 +435,7 @@ void PairMCA::rebuild_cache()
         if (dx * dx + dy * dy + dz * dz >= lim * lim) continue;
       }
       const int e = off + ne++;
+      eown[e] = i;
       ej[e] = jo;
       eflag[e] = (itag < jtag ? E_IA : 0) | (jlocal ? E_LOCAL : 0) | (image ? E_IMAGE : 0) |
           ((!mol || mol[i] == mol[j]) ? E_SAME : 0);
@@ -449,6 +456,7 @@ void PairMCA::rebuild_cache()
     }
   }
   delete[] seen;
+  nentries = off;
   // does any pair read a ghost's row until the next rebuild?  (one answer for all ranks: the
   // forward communication is collective)
   int ghost_local = 0;
@@ -1364,8 +1372,6 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   // step, no per-atom tallies
   const bool fused = MCA_FUSED && D3 && UNI && common && muni && !peratom && fused_on;
   FusedCtx fctx;
-  fctx.ilist = ilist;
-  fctx.inum = inum;
   fctx.h = h;
   fctx.hr = hr;
   fctx.vremap = vremap;
@@ -1384,10 +1390,9 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   fctx.s_weld = mat.wfac * mat.s0;
   // (its tallies and the virial pass through a copy: a local whose address is taken lives
   // in memory for the whole loop)
-  auto fused_step = [&](int &ii_, int &jj_) __attribute__((always_inline)) -> int {
+  auto fused_step = [&](bigint &e_) __attribute__((always_inline)) -> int {
     FusedIO io;
-    io.ii = ii_;
-    io.jj = jj_;
+    io.e = e_;
     io.links = io.cross = 0.0;
     io.local = false;
     if (vglobal)
@@ -1395,8 +1400,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
     fctx.npre = npre;
     const int r = fused4(fctx, io);
     if (r == 1) {
-      ii_ = io.ii;
-      jj_ = io.jj;
+      e_ = io.e;
       tally_links += io.links;
       tally_cross += io.cross;
       tally_fused += 4.0;
@@ -1410,21 +1414,19 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   // is inlined at its one call site: called through a closure, the locals it shares --
   // tallies, virial, npre -- live in memory, and the 2D pair loop ran 8-10 % slower)
   if (fused) {
-    // the kernel takes the next four pairs where it can, the batch stages the others
-    int ii = 0, jj = 0;
+    // the kernel takes the next four pairs where it can, the batch stages the others (the
+    // lists hold the automata's entries one after another in ilist's order: one cursor e)
+    bigint e = 0;
     for (;;) {
-      while (ii < inum && jj >= ecount[ilist[ii]]) {
-        ii++;
-        jj = 0;
-      }
-      const bool done = ii >= inum;
+      const bool done = e >= nentries;
       bool full = false;
       if (!done) {
-        const int r = fused_step(ii, jj);
+        const int r = fused_step(e);
         if (r == 0) {
-          const int i = ilist[ii];
-          stage(i, cacheoff[i], jj);
-          jj++;
+          const int i = eown[e];
+          const bigint eoff = cacheoff[i];
+          stage(i, eoff, (int) (e - eoff));
+          e++;
           full = npre == NBATCH;
         } else
           full = r == 2;
@@ -1486,37 +1488,31 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
 int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
 {
 #if MCA_FUSED
-  const int *ilist = C.ilist;
   const double *xo0 = xo[0];
   double *sacc0 = sacc[0];
   const double *h = C.h, *hr = C.hr;
   const double dt = C.dt, G2 = C.G2, alpha = C.alpha, runi = C.runi, dbar_u = C.dbar_u;
   const double idbar_u = C.idbar_u, A_u = C.A_u, kr_u = C.kr_u, cd_u = C.cd_u, cr_u = C.cr_u;
   const double s_link = C.s_link, s_weld = C.s_weld;
-    int li[4], lj[4], lef[4];
-    bigint le[4];
-    int cii = io.ii, cjj = io.jj;
+    // the four entries e0..e0+3: in the common case if each has a state (a slot), and a local
+    // partner its mirror slot (the pair's kind is checked once the states are loaded)
+    const bigint e0 = io.e;
+    if (e0 + 4 > nentries) return 0;
+    {
+      const __m128i cf = _mm_loadu_si128(reinterpret_cast<const __m128i *>(cacheflat + e0));
+      const __m128i mf = _mm_loadu_si128(reinterpret_cast<const __m128i *>(mirrorflat + e0));
+      const __m128i fl = _mm_loadu_si128(reinterpret_cast<const __m128i *>(eflag + e0));
+      const __m128i loc = _mm_cmpeq_epi32(_mm_and_si128(fl, _mm_set1_epi32(E_LOCAL)),
+                                          _mm_set1_epi32(E_LOCAL));
+      const __m128i bad = _mm_or_si128(_mm_srai_epi32(cf, 31), _mm_and_si128(loc, _mm_srai_epi32(mf, 31)));
+      if (_mm_movemask_epi8(bad)) return 0;
+    }
+    const int *li = eown + e0, *lj = ej + e0, *lef = eflag + e0;
+    const bigint le[4] = {e0, e0 + 1, e0 + 2, e0 + 3};
     bool anyimg = false, anylocal = false;
     for (int l = 0; l < 4; l++) {
-      int q = ilist[cii];
-      while (cjj >= ecount[q]) {
-        if (++cii >= C.inum) return 0;
-        cjj = 0;
-        q = ilist[cii];
-      }
-      const bigint e = cacheoff[q] + cjj;
-      if (cacheflat[e] < 0) return 0;
-      const double kd = psc[e * NP + (FS::S_KIND - 1)];
-      if (!(kd == FS::LINK || kd == FS::WELD || kd == FS::ATTACH)) return 0;
-      const int ef = eflag[e];
-      if ((ef & E_LOCAL) && mirrorflat[e] < 0) return 0;
-      li[l] = q;
-      lj[l] = ej[e];
-      lef[l] = ef;
-      le[l] = e;
-      anyimg = anyimg || (ef & E_IMAGE);
-      anylocal = anylocal || (ef & E_LOCAL);
-      cjj++;
+      anyimg = anyimg || (lef[l] & E_IMAGE);
+      anylocal = anylocal || (lef[l] & E_LOCAL);
     }
     const V4 zero = vb(0.0), half = vb(0.5);
     const V4 mIA = vne(_mm256_setr_pd(lef[0] & E_IA, lef[1] & E_IA, lef[2] & E_IA, lef[3] & E_IA), zero);
@@ -1654,6 +1650,10 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     V4 kind = _mm256_loadu_pd(sp[0]), pn = _mm256_loadu_pd(sp[1]), xi0 = _mm256_loadu_pd(sp[2]),
        xi1 = _mm256_loadu_pd(sp[3]);
     transpose4(kind, pn, xi0, xi1);
+    // (links, welds and attachments only: contacts and free slots take the batch)
+    if (_mm256_movemask_pd(_mm256_or_pd(_mm256_or_pd(veq(kind, vb(FS::LINK)), veq(kind, vb(FS::WELD))),
+                                        veq(kind, vb(FS::ATTACH)))) != 0xf)
+      return 0;
     V4 xi2 = _mm256_loadu_pd(sp[0] + 4), th0 = _mm256_loadu_pd(sp[1] + 4),
        th1 = _mm256_loadu_pd(sp[2] + 4), th2 = _mm256_loadu_pd(sp[3] + 4);
     transpose4(xi2, th0, th1, th2);
@@ -1835,8 +1835,7 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
       add_rows(C_L4, L4, L5, zero, zero, true, zero, zero, zero, zero);
     }
     if (anylocal) io.local = true;
-  io.ii = cii;
-  io.jj = cjj;
+  io.e = e0 + 4;
   return 1;
 #else
   (void) C;

@@ -72,6 +72,9 @@ class PairMCA : public Pair {
   int *eimg;            // periodic image of the partner relative to its owner, packed (pack_image)
   bigint *cacheoff;     // offset of atom i's pairs (-1: none)
   int *ecount;          // number of atom i's pairs
+  int *eown;            // the automaton that evaluates each entry (the lists hold the automata's
+                        // entries one after another, in ilist's order)
+  bigint nentries;      // entries of the evaluation lists
   int ncached;          // local atoms when the lists were built
   int mirrors_pending;  // 1: the partners' copies of local pairs are behind (sync_mirrors)
   // the live pair states between two list rebuilds: one slot (fix mca/state's layout)
@@ -201,14 +204,13 @@ class PairMCA : public Pair {
   // the fused kernel of pair_loop: its constants, and what it reads and returns of the loop's
   // state (cursor, virial, tallies)
   struct FusedCtx {
-    const int *ilist;
-    int inum, npre;
+    int npre;
     const double *h, *hr;
     bool vremap, vglobal;
     double dt, G2, alpha, runi, dbar_u, idbar_u, A_u, kr_u, cd_u, cr_u, s_link, s_weld;
   };
   struct FusedIO {
-    int ii, jj;
+    bigint e;    // the first of the four entries; on success, the entry after them
     bool local;
     double links, cross, vir[6];
   };
