@@ -1767,6 +1767,14 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
                       C_NL == 6 && C_NC == 7 && C_F2 == 8 && C_T0 == 9 && C_T1 == 10 &&
                       C_L2 == 11 && C_L4 == 12 && C_L5 == 13 && SR == 16,
                   "the fused kernel adds sacc rows in blocks of four");
+    // (the rows of the four lanes' i and local j, once for the four blocks)
+    double *const ai0 = sacc0 + SR * li[0], *const ai1 = sacc0 + SR * li[1],
+                  *const ai2 = sacc0 + SR * li[2], *const ai3 = sacc0 + SR * li[3];
+    double *const aj0 = (lef[0] & E_LOCAL) ? sacc0 + SR * lj[0] : nullptr;
+    double *const aj1 = (lef[1] & E_LOCAL) ? sacc0 + SR * lj[1] : nullptr;
+    double *const aj2 = (lef[2] & E_LOCAL) ? sacc0 + SR * lj[2] : nullptr;
+    double *const aj3 = (lef[3] & E_LOCAL) ? sacc0 + SR * lj[3] : nullptr;
+    const bool same1 = li[1] == li[0], same2 = li[2] == li[1], same3 = li[3] == li[2];
     auto add_rows = [&](int off, V4 c0, V4 c1, V4 c2, V4 c3, bool jsame, V4 d0, V4 d1, V4 d2,
                         V4 d3) __attribute__((always_inline)) {
       transpose4(c0, c1, c2, c3);
@@ -1779,30 +1787,26 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
         transpose4(d0, d1, d2, d3);
       // (i's row stays in a register while consecutive lanes share i; j differs from the i of
       // its own lane, and a later lane's i reads its row after this lane's j wrote it)
-      double *a0 = sacc0 + SR * li[0] + off;
-      V4 acc = _mm256_loadu_pd(a0) + c0;
-      auto jadd = [&](int l, V4 d) __attribute__((always_inline)) {
-        if (lef[l] & E_LOCAL) {
-          double *aj = sacc0 + SR * lj[l] + off;
-          _mm256_storeu_pd(aj, _mm256_loadu_pd(aj) + d);
-        }
+      auto jadd = [&](double *aj, V4 d) __attribute__((always_inline)) {
+        if (aj) _mm256_storeu_pd(aj + off, _mm256_loadu_pd(aj + off) + d);
       };
-      auto iadd = [&](int l, V4 c) __attribute__((always_inline)) {
-        if (li[l] == li[l - 1])
+      V4 acc = _mm256_loadu_pd(ai0 + off) + c0;
+      auto iadd = [&](bool same, double *prev, double *ai, V4 c) __attribute__((always_inline)) {
+        if (same)
           acc = acc + c;
         else {
-          _mm256_storeu_pd(sacc0 + SR * li[l - 1] + off, acc);
-          acc = _mm256_loadu_pd(sacc0 + SR * li[l] + off) + c;
+          _mm256_storeu_pd(prev + off, acc);
+          acc = _mm256_loadu_pd(ai + off) + c;
         }
       };
-      jadd(0, d0);
-      iadd(1, c1);
-      jadd(1, d1);
-      iadd(2, c2);
-      jadd(2, d2);
-      iadd(3, c3);
-      jadd(3, d3);
-      _mm256_storeu_pd(sacc0 + SR * li[3] + off, acc);
+      jadd(aj0, d0);
+      iadd(same1, ai0, ai1, c1);
+      jadd(aj1, d1);
+      iadd(same2, ai1, ai2, c2);
+      jadd(aj2, d2);
+      iadd(same3, ai2, ai3, c3);
+      jadd(aj3, d3);
+      _mm256_storeu_pd(ai3 + off, acc);
     };
     {
       const V4 Fs0 = si * F0, Fs1 = si * F1, T2 = vrq * (n0 * F1 - n1 * F0);
