@@ -1159,7 +1159,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       const bool cross = !same_body;
       // forces, torques, Love-Weber sums and tallies of the pair
       auto tail = [&](double Fe0, double Fe1, double Fe2, double Fd0, double Fd1, double Fd2,
-                      double Ma0, double Ma1, double Ma2, int kind) {
+                      double Ma0, double Ma1, double Ma2, int kind) __attribute__((always_inline)) {
         // (the expressions of pass 2a's, pair_force)
         const double F0 = Fe0 + Fd0, F1 = Fe1 + Fd1, F2 = D3 ? Fe2 + Fd2 : 0.0;
         const double nxF0 = D3 ? n1 * F2 - n2 * F1 : 0.0, nxF1 = D3 ? n2 * F0 - n0 * F2 : 0.0;
@@ -1390,9 +1390,10 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   fctx.s_weld = mat.wfac * mat.s0;
   // (its tallies and the virial pass through a copy: a local whose address is taken lives
   // in memory for the whole loop)
-  auto fused_step = [&](bigint &e_) __attribute__((always_inline)) -> int {
+  auto fused_step = [&](bigint &e_, int &skip_) __attribute__((always_inline)) -> int {
     FusedIO io;
     io.e = e_;
+    io.skip = 1;
     io.links = io.cross = 0.0;
     io.local = false;
     if (vglobal)
@@ -1407,7 +1408,8 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
       if (io.local) any_mirror = true;
       if (vglobal)
         for (int c = 0; c < 6; c++) vir[c] = io.vir[c];
-    }
+    } else if (r == 0)
+      skip_ = io.skip;
     return r;
   };
   // the pairs in the order of the evaluation lists, automaton ii, its entry jj.  (Each lambda
@@ -1417,12 +1419,19 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
     // the kernel takes the next four pairs where it can, the batch stages the others (the
     // lists hold the automata's entries one after another in ilist's order: one cursor e)
     bigint e = 0;
+    int skip = 0;    // pairs the kernel left to the batch, still to stage
     for (;;) {
       const bool done = e >= nentries;
       bool full = false;
       if (!done) {
-        const int r = fused_step(e);
+        // (a first pair without a link takes the batch without a call to the kernel)
+        if (!skip && (cacheflat[e] < 0 || !(psc[e * NP + (FS::S_KIND - 1)] == FS::LINK ||
+                                            psc[e * NP + (FS::S_KIND - 1)] == FS::WELD ||
+                                            psc[e * NP + (FS::S_KIND - 1)] == FS::ATTACH)))
+          skip = 1;
+        const int r = skip ? 0 : fused_step(e, skip);
         if (r == 0) {
+          skip--;
           const int i = eown[e];
           const bigint eoff = cacheoff[i];
           stage(i, eoff, (int) (e - eoff));
@@ -1494,10 +1503,16 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
   const double dt = C.dt, G2 = C.G2, alpha = C.alpha, runi = C.runi, dbar_u = C.dbar_u;
   const double idbar_u = C.idbar_u, A_u = C.A_u, kr_u = C.kr_u, cd_u = C.cd_u, cr_u = C.cr_u;
   const double s_link = C.s_link, s_weld = C.s_weld;
-    // the four entries e0..e0+3: in the common case if each has a state (a slot), and a local
-    // partner its mirror slot (the pair's kind is checked once the states are loaded)
+    // the four entries e0..e0+3: in the common case if each has a state (a slot) that is a
+    // link, weld or attachment, and a local partner its mirror slot.  If not, the pairs up to
+    // the last that is not go to the batch (io.skip) before the kernel is tried again: a window
+    // that slid by one pair would meet the same pair up to four times (in a stretch of contacts
+    // that was a quarter of the damaged 3D block's time)
     const bigint e0 = io.e;
-    if (e0 + 4 > nentries) return 0;
+    if (e0 + 4 > nentries) {
+      io.skip = (int) (nentries - e0);
+      return 0;
+    }
     {
       const __m128i cf = _mm_loadu_si128(reinterpret_cast<const __m128i *>(cacheflat + e0));
       const __m128i mf = _mm_loadu_si128(reinterpret_cast<const __m128i *>(mirrorflat + e0));
@@ -1505,8 +1520,23 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
       const __m128i loc = _mm_cmpeq_epi32(_mm_and_si128(fl, _mm_set1_epi32(E_LOCAL)),
                                           _mm_set1_epi32(E_LOCAL));
       const __m128i bad = _mm_or_si128(_mm_srai_epi32(cf, 31), _mm_and_si128(loc, _mm_srai_epi32(mf, 31)));
-      if (_mm_movemask_epi8(bad)) return 0;
+      int badl = _mm_movemask_ps(_mm_castsi128_ps(bad));
+      // (a lane without a slot has no state in psc: its kind is not read)
+      for (int l = 0; l < 4; l++) {
+        if (badl >> l & 1) continue;
+        const double kd = psc[(e0 + l) * NP + (FS::S_KIND - 1)];
+        if (!(kd == FS::LINK || kd == FS::WELD || kd == FS::ATTACH)) badl |= 1 << l;
+      }
+      // (no four that start at or before the last lane not taken can be taken: up to it, the
+      // batch)
+      if (badl) {
+        io.skip = 32 - __builtin_clz(badl);
+        return 0;
+      }
     }
+    // (the staged pairs come first in the lists' order: flushed before the four are computed,
+    // not after -- in a mixed stretch of contacts and links that doubled the kernel's work)
+    if (C.npre) return 2;
     const int *li = eown + e0, *lj = ej + e0, *lef = eflag + e0;
     const bigint le[4] = {e0, e0 + 1, e0 + 2, e0 + 3};
     bool anyimg = false, anylocal = false;
@@ -1650,10 +1680,6 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     V4 kind = _mm256_loadu_pd(sp[0]), pn = _mm256_loadu_pd(sp[1]), xi0 = _mm256_loadu_pd(sp[2]),
        xi1 = _mm256_loadu_pd(sp[3]);
     transpose4(kind, pn, xi0, xi1);
-    // (links, welds and attachments only: contacts and free slots take the batch)
-    if (_mm256_movemask_pd(_mm256_or_pd(_mm256_or_pd(veq(kind, vb(FS::LINK)), veq(kind, vb(FS::WELD))),
-                                        veq(kind, vb(FS::ATTACH)))) != 0xf)
-      return 0;
     V4 xi2 = _mm256_loadu_pd(sp[0] + 4), th0 = _mm256_loadu_pd(sp[1] + 4),
        th1 = _mm256_loadu_pd(sp[2] + 4), th2 = _mm256_loadu_pd(sp[3] + 4);
     transpose4(xi2, th0, th1, th2);
@@ -1709,9 +1735,12 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
       const V4 tp = vsel(vgt(sn, zero), sn, zero);
       const V4 brk = _mm256_and_pd(vne(kind, vb(FS::ATTACH)),
                                    vgt(tp * tp + vb(3.0) * t2, strength * strength));
-      if (_mm256_movemask_pd(brk)) return 0;    // a link breaks: the batch's general path
+      // a link breaks: the batch's general path, from the pair before it on
+      if (const int bm = _mm256_movemask_pd(brk)) {
+        io.skip = 32 - __builtin_clz(bm);
+        return 0;
+      }
     }
-    if (C.npre) return 2;    // (the staged pairs come first in the lists' order: flush them)
     static_assert(FS::S_PN == FS::S_KIND + 1 && FS::S_XI == FS::S_KIND + 2 &&
                       FS::S_TH == FS::S_KIND + 5 && FS::S_RP == FS::S_KIND + 8 && NP == 11,
                   "the fused kernel moves pair states in blocks of four");

@@ -211,6 +211,7 @@ class PairMCA : public Pair {
   };
   struct FusedIO {
     bigint e;    // the first of the four entries; on success, the entry after them
+    int skip;    // not taken: the pairs to stage before the kernel is tried again (>= 1)
     bool local;
     double links, cross, vir[6];
   };
