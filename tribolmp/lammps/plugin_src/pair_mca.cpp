@@ -41,7 +41,7 @@
 #include <cstdint>
 #include <cstring>
 
-// the fused kernel of pair_loop (3D) needs AVX; without it every pair takes the batched path
+// the fused kernel of pair_loop needs AVX; without it every pair takes the batched path
 // (same numbers: both are the general path's expressions in its order)
 #if defined(__AVX__)
 #include <immintrin.h>
@@ -196,7 +196,7 @@ void PairMCA::settings(int narg, char **arg)
       // same numbers, for the test that the two agree)
       batch_on = utils::logical(FLERR, arg[iarg + 1], false, lmp);
     } else if (strcmp(arg[iarg], "fused") == 0) {
-      // (the fused kernel of the 3D common case; 'no' leaves it to the batch, same numbers,
+      // (the fused kernel of the common case; 'no' leaves it to the batch, same numbers,
       // for the test that the two agree and for timing)
       fused_on = utils::logical(FLERR, arg[iarg + 1], false, lmp);
     } else if (strcmp(arg[iarg], "prune") == 0) {
@@ -906,7 +906,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   int npre = 0;
   const bool common = ADV && !init_links && batch_on;
   // (stage and flush are inlined where the driver below calls them: as calls through their
-  // closures the 2D pair loop, which has no fused kernel, ran 10 % slower)
+  // closures the 2D pair loop ran 10 % slower, before it had a fused kernel)
   auto stage = [&](const int i, const bigint eoff, const int jj) __attribute__((always_inline)) {
       // the pairs i evaluates (rebuild_cache): partner, orientation, image and body flags
       const int *ej_i = &ej[eoff], *ef_i = &eflag[eoff];
@@ -1368,9 +1368,9 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
   }
   npre = 0;
   };
-  // the fused kernel (fused4) where it applies: 3D, one radius and one mass, a committed
-  // step, no per-atom tallies
-  const bool fused = MCA_FUSED && D3 && UNI && common && muni && !peratom && fused_on;
+  // the fused kernel (fused4) where it applies: one radius and one mass, a committed step,
+  // no per-atom tallies
+  const bool fused = MCA_FUSED && UNI && common && muni && !peratom && fused_on;
   FusedCtx fctx;
   fctx.h = h;
   fctx.hr = hr;
@@ -1399,7 +1399,7 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
     if (vglobal)
       for (int c = 0; c < 6; c++) io.vir[c] = vir[c];
     fctx.npre = npre;
-    const int r = fused4(fctx, io);
+    const int r = fused4<DIM>(fctx, io);
     if (r == 1) {
       e_ = io.e;
       tally_links += io.links;
@@ -1473,30 +1473,29 @@ template <int DIM, bool ADV, bool UNI> void PairMCA::pair_loop(bool init_links, 
 }
 
 /* ----------------------------------------------------------------------
-   the fused kernel of pair_loop (3D, one radius and one mass, a committed
-   step, no per-atom tallies).
-   The fused kernel (3D, one radius and one mass, a committed step, no per-atom tallies):
-   the next four pairs of the evaluation lists -- possibly of several automata -- when all
-   four are in the common case, one pair per lane of AVX registers from their inputs to their
-   sums, without the batch's arrays.  Inputs are loaded as rows (the partners' rows of xo, the
-   pair states) and transposed in registers, results are transposed back into rows of the
-   pair state and of sacc and added row by row.  The batch stages every value of a pair in
-   memory and reads it back, which made the 3D pair loop bound by its stores (docs/mca.md).
-   The expressions and their order are batch_geometry's and batch_common's, the sums are
-   formed pair by pair in the lists' order, so the numbers are the general path's
-   (tests/mca/test_law_batch.py).  Returns false, with nothing written, when a pair is not in
-   the common case (no state, not linked, a mirror slot to find, a link that breaks): those
-   take the batch.
-  const bool fused = MCA_FUSED && D3 && UNI && common && muni && !peratom && fused_on;
-  const double idbar_u = 1.0 / (runi + runi);
-  const double s_link = mat.s0, s_weld = mat.wfac * mat.s0;
-   A function of its own (not inlined), so that its registers are its own: inlined into the
-   pair loop it spilled about three times as many vectors.
+   the fused kernel of pair_loop (one radius and one mass, a committed step,
+   no per-atom tallies): the next four pairs of the evaluation lists --
+   possibly of several automata -- when all four are in the common case, one
+   pair per lane of AVX registers from their inputs to their sums, without
+   the batch's arrays.  Inputs are loaded as rows (the partners' rows of xo,
+   the pair states) and transposed in registers, results are transposed back
+   into rows of the pair state and of sacc and added row by row.  The batch
+   stages every value of a pair in memory and reads it back, which made the
+   pair loop bound by its stores (docs/mca.md).  The expressions and their
+   order are batch_geometry's and batch_common's for the dimension, the sums
+   are formed pair by pair in the lists' order, so the numbers are the
+   general path's (tests/mca/test_law_batch.py).  Returns 0, with nothing
+   written, when a pair is not in the common case (no state, not linked, a
+   mirror slot to find, a link that breaks): those take the batch; 2 when
+   staged pairs must be flushed first; 1 when the four were taken.
+   A function of its own (not inlined), so that its registers are its own:
+   inlined into the pair loop it spilled about three times as many vectors.
 ------------------------------------------------------------------------- */
 
-int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
+template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
 {
 #if MCA_FUSED
+  constexpr bool D3 = (DIM == 3);
   const double *xo0 = xo[0];
   double *sacc0 = sacc[0];
   const double *h = C.h, *hr = C.hr;
@@ -1546,12 +1545,6 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     }
     const V4 zero = vb(0.0), half = vb(0.5);
     const V4 mIA = vne(_mm256_setr_pd(lef[0] & E_IA, lef[1] & E_IA, lef[2] & E_IA, lef[3] & E_IA), zero);
-    // the rows of xo of a and b (i is a where E_IA: pass 1a's canonical orientation): x v omega
-    // X dep (pair_mca.h, R_*), four blocks of four.  Per lane, b's row minus a's gives R, dV and
-    // b's rotation rate relative to a's; the rows' sum the symmetric inputs, 0.5 (X_a + X_b) and
-    // the plastic strain increments (a sum: the same numbers as pass 1a's); r (omega_a +
-    // omega_b) the rotation term of the contact point (ra = rb = runi).  Then one transpose
-    // per block gives one vector per quantity, one lane per pair
     static_assert(R_X == 0 && R_V == 3 && R_OM == 6 && R_XM == 9 && R_DEP == 10 && PR == 16,
                   "the fused kernel reads rows of xo in blocks of four");
     const double *pa[4], *pb[4];
@@ -1572,18 +1565,37 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
         unpack_image(eimg[le[l]], jimg);
         const bool i_is_a = lef[l] & E_IA;
         const double n0 = i_is_a ? jimg[0] : -jimg[0], n1 = i_is_a ? jimg[1] : -jimg[1];
-        const double n2 = i_is_a ? jimg[2] : -jimg[2];
-        sR[0][l] = (n0 * h[0] + n1 * h[5] + n2 * h[4]);
-        sR[1][l] = (n1 * h[1] + n2 * h[3]);
-        sR[2][l] = n2 * h[2];
-        sV[0][l] = n0 * hr[0] + n1 * hr[5] + n2 * hr[4];
-        sV[1][l] = n1 * hr[1] + n2 * hr[3];
-        sV[2][l] = n2 * hr[2];
+        if (D3) {
+          const double n2 = i_is_a ? jimg[2] : -jimg[2];
+          sR[0][l] = (n0 * h[0] + n1 * h[5] + n2 * h[4]);
+          sR[1][l] = (n1 * h[1] + n2 * h[3]);
+          sR[2][l] = n2 * h[2];
+          sV[0][l] = n0 * hr[0] + n1 * hr[5] + n2 * hr[4];
+          sV[1][l] = n1 * hr[1] + n2 * hr[3];
+          sV[2][l] = n2 * hr[2];
+        } else {
+          sR[0][l] = (n0 * h[0] + n1 * h[5]);
+          sR[1][l] = n1 * h[1];
+          sV[0][l] = n0 * hr[0] + n1 * hr[5];
+          sV[1][l] = n1 * hr[1];
+        }
       }
     }
     const bool vshift = anyimg && C.vremap;
+    const V4 vrq = vb(runi);
+    const V4 si = vsel(mIA, vb(1.0), vb(-1.0));
+    // what the sums below read: the pair's vector R (a to b), normal, elastic force Fe, force
+    // F and signed moment Ms on i, kind (2D: the z components are not formed)
+    V4 R0, R1, R2, n0, n1, n2, Fe0, Fe1, Fe2, F0, F1, F2, Ms0, Ms1, Ms2, kind;
+    if constexpr (D3) {
+    // the rows of xo of a and b (i is a where E_IA: pass 1a's canonical orientation): x v omega
+    // X dep (pair_mca.h, R_*), four blocks of four.  Per lane, b's row minus a's gives R, dV and
+    // b's rotation rate relative to a's; the rows' sum the symmetric inputs, 0.5 (X_a + X_b) and
+    // the plastic strain increments (a sum: the same numbers as pass 1a's); r (omega_a +
+    // omega_b) the rotation term of the contact point (ra = rb = runi).  Then one transpose
+    // per block gives one vector per quantity, one lane per pair
     // block 0 (x, v0): R, dV0
-    V4 R0, R1, R2, dV0;
+    V4 dV0;
     {
       // (named vectors, not arrays: GCC keeps an array of vectors in memory)
       auto row = [&](int l) __attribute__((always_inline)) {
@@ -1610,10 +1622,11 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     const V4 rsq = R0 * R0 + R1 * R1 + R2 * R2;
     const V4 r = _mm256_sqrt_pd(rsq);
     const V4 ir = vb(1.0) / r;
-    const V4 n0 = R0 * ir, n1 = R1 * ir, n2 = R2 * ir;
+    n0 = R0 * ir;
+    n1 = R1 * ir;
+    n2 = R2 * ir;
     const V4 idbar = vb(idbar_u);
     const V4 eraw = r * idbar - vb(1.0);
-    const V4 vrq = vb(runi);
     // block 1 (v1 v2, omega0 omega1): dV1 dV2, dom0 dom1 (omega_b - omega_a), ws0 ws1
     V4 dV1, dV2, dom0, dom1, ws0, ws1;
     {
@@ -1677,8 +1690,8 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     }
     // the pair states: kind pn xi th rp (psc entries, pair_mca.h)
     const double *sp[4] = {psc + le[0] * NP, psc + le[1] * NP, psc + le[2] * NP, psc + le[3] * NP};
-    V4 kind = _mm256_loadu_pd(sp[0]), pn = _mm256_loadu_pd(sp[1]), xi0 = _mm256_loadu_pd(sp[2]),
-       xi1 = _mm256_loadu_pd(sp[3]);
+    V4 pn = _mm256_loadu_pd(sp[1]), xi0 = _mm256_loadu_pd(sp[2]), xi1 = _mm256_loadu_pd(sp[3]);
+    kind = _mm256_loadu_pd(sp[0]);
     transpose4(kind, pn, xi0, xi1);
     V4 xi2 = _mm256_loadu_pd(sp[0] + 4), th0 = _mm256_loadu_pd(sp[1] + 4),
        th1 = _mm256_loadu_pd(sp[2] + 4), th2 = _mm256_loadu_pd(sp[3] + 4);
@@ -1724,11 +1737,15 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     const V4 t0 = sf * xi0, t1 = sf * xi1, t2v = sf * xi2;
     // (the pair's forces before the rupture test, which rarely fails: fewer values live)
     const V4 vA = vb(A_u), vcd = vb(cd_u), vcr = vb(cr_u), vkr = vb(kr_u);
-    const V4 Fe0 = vA * (sn * n0 + t0), Fe1 = vA * (sn * n1 + t1), Fe2 = vA * (sn * n2 + t2v);
-    const V4 F0 = Fe0 + vcd * vr0, F1 = Fe1 + vcd * vr1, F2 = Fe2 + vcd * vr2;
-    const V4 si = vsel(mIA, vb(1.0), vb(-1.0));
-    const V4 Ms0 = si * (vkr * th0 + vcr * dom0), Ms1 = si * (vkr * th1 + vcr * dom1),
-             Ms2 = si * (vkr * th2 + vcr * dom2);
+    Fe0 = vA * (sn * n0 + t0);
+    Fe1 = vA * (sn * n1 + t1);
+    Fe2 = vA * (sn * n2 + t2v);
+    F0 = Fe0 + vcd * vr0;
+    F1 = Fe1 + vcd * vr1;
+    F2 = Fe2 + vcd * vr2;
+    Ms0 = si * (vkr * th0 + vcr * dom0);
+    Ms1 = si * (vkr * th1 + vcr * dom1);
+    Ms2 = si * (vkr * th2 + vcr * dom2);
     {
       const V4 t2 = t0 * t0 + t1 * t1 + t2v * t2v;
       const V4 strength = vsel(veq(kind, vb(FS::LINK)), vb(s_link), vb(s_weld));
@@ -1761,26 +1778,6 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
       _mm256_storeu_pd(psc + le[2] * NP + 4, c2);
       _mm256_storeu_pd(psc + le[3] * NP + 4, c3);
     }
-    if (C.vglobal) {
-      // scatter's global virial, pair by pair in order
-      alignas(32) double f0[4], f1[4], f2[4], x0[4], x1[4], x2[4];
-      _mm256_store_pd(f0, F0);
-      _mm256_store_pd(f1, F1);
-      _mm256_store_pd(f2, F2);
-      _mm256_store_pd(x0, R0);
-      _mm256_store_pd(x1, R1);
-      _mm256_store_pd(x2, R2);
-      for (int l = 0; l < 4; l++) {
-        const double w = (lef[l] & E_LOCAL) ? -1.0 : -0.5;
-        const double G0 = w * f0[l], G1 = w * f1[l], G2w = w * f2[l];
-        io.vir[0] += x0[l] * G0;
-        io.vir[1] += x1[l] * G1;
-        io.vir[3] += x0[l] * G1;
-        io.vir[2] += x2[l] * G2w;
-        io.vir[4] += x0[l] * G2w;
-        io.vir[5] += x1[l] * G2w;
-      }
-    }
     {
       V4 c0 = R0, c1 = R1, c2 = R2, c3 = R2;
       transpose4(c0, c1, c2, c3);
@@ -1788,6 +1785,171 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
       store3(psc + le[1] * NP + 8, c1);
       store3(psc + le[2] * NP + 8, c2);
       store3(psc + le[3] * NP + 8, c3);
+    }
+    } else {
+    // 2D: of the rows of xo, x0 x1 and v0 v1 (two halves of one vector), omega_z X dep_xx
+    // dep_yy (one block of four) and dep_xy (a value); of the pair states, kind pn xi0 xi1 and
+    // th1 th2 rp0 rp1 (th1 is 0 in 2D and written back as read).  The expressions are
+    // batch_geometry's and batch_common's 2D branches (no z terms: those would turn a -0 into
+    // a +0 where the batch keeps it)
+    V4 dV0, dV1;
+    {
+      auto row = [&](int l) __attribute__((always_inline)) {
+        // (x0 x1 | v0 v1)
+        const V4 av = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(pa[l])),
+                                           _mm_loadu_pd(pa[l] + R_V), 1);
+        V4 bv = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(pb[l])),
+                                     _mm_loadu_pd(pb[l] + R_V), 1);
+        // ((V_b + shift) - V_a, pass 1a's order)
+        if (vshift && im[l] != 0.0)
+          bv = _mm256_blend_pd(bv, bv + _mm256_setr_pd(0.0, 0.0, sV[0][l], sV[1][l]), 0xC);
+        return bv - av;
+      };
+      R0 = row(0);
+      R1 = row(1);
+      dV0 = row(2);
+      dV1 = row(3);
+      transpose4(R0, R1, dV0, dV1);
+      if (anyimg) {
+        // ((x_b - x_a) + shift)
+        const V4 mIM = vne(_mm256_load_pd(im), zero);
+        R0 = vsel(mIM, R0 + _mm256_load_pd(sR[0]), R0);
+        R1 = vsel(mIM, R1 + _mm256_load_pd(sR[1]), R1);
+      }
+    }
+    // pass 1b (batch_geometry)
+    const V4 rsq = R0 * R0 + R1 * R1;
+    const V4 r = _mm256_sqrt_pd(rsq);
+    const V4 ir = vb(1.0) / r;
+    n0 = R0 * ir;
+    n1 = R1 * ir;
+    const V4 idbar = vb(idbar_u);
+    const V4 eraw = r * idbar - vb(1.0);
+    // (omega2, X, dep xx yy): ws2 dom2, Xbar, D0 D1, as the 3D block 2
+    V4 dom2, ws2, Xbar, D0, D1;
+    {
+      auto row = [&](int l, V4 &g) __attribute__((always_inline)) {
+        const V4 av = _mm256_loadu_pd(pa[l] + R_OM + 2), bv = _mm256_loadu_pd(pb[l] + R_OM + 2);
+        g = bv - av;
+        return V4(_mm256_blend_pd(av + bv, vrq * av + vrq * bv, 0x1));
+      };
+      V4 g0, g1, g2, g3;
+      V4 c0 = row(0, g0), c1 = row(1, g1), c2 = row(2, g2), c3 = row(3, g3);
+      transpose4(c0, c1, c2, c3);
+      ws2 = c0;
+      Xbar = half * c1;
+      D0 = half * c2;
+      D1 = half * c3;
+      dom2 = _mm256_permute2f128_pd(_mm256_unpacklo_pd(g0, g1), _mm256_unpacklo_pd(g2, g3), 0x20);
+    }
+    // dep_xy
+    const int XY = R_DEP + 3;
+    const V4 D3xy = half * (_mm256_setr_pd(pa[0][XY], pa[1][XY], pa[2][XY], pa[3][XY]) +
+                            _mm256_setr_pd(pb[0][XY], pb[1][XY], pb[2][XY], pb[3][XY]));
+    // the contact point's rotation term (ws along z) and the relative velocity
+    const V4 wxn0 = -(ws2 * n1), wxn1 = ws2 * n0;
+    const V4 vr0 = dV0 - wxn0, vr1 = dV1 - wxn1;
+    // the pair states
+    const double *sp[4] = {psc + le[0] * NP, psc + le[1] * NP, psc + le[2] * NP, psc + le[3] * NP};
+    V4 pn = _mm256_loadu_pd(sp[1]), xi0 = _mm256_loadu_pd(sp[2]), xi1 = _mm256_loadu_pd(sp[3]);
+    kind = _mm256_loadu_pd(sp[0]);
+    transpose4(kind, pn, xi0, xi1);
+    V4 th1 = _mm256_loadu_pd(sp[0] + 6), th2 = _mm256_loadu_pd(sp[1] + 6),
+       rp0 = _mm256_loadu_pd(sp[2] + 6), rp1 = _mm256_loadu_pd(sp[3] + 6);
+    transpose4(th1, th2, rp0, rp1);
+    {
+      const V4 xn = xi0 * n0 + xi1 * n1;
+      const V4 m0 = xi0 * xi0 + xi1 * xi1;
+      const V4 proj = _mm256_and_pd(vne(xn, zero), vgt(m0, zero));
+      const V4 q = xn * xn / m0;
+      V4 sc = vb(1.0) + q * (vb(0.5) + vb(0.375) * q);
+      const V4 series = vlt(q, vb(1e-4));
+      if (_mm256_movemask_pd(_mm256_andnot_pd(series, proj)))
+        sc = vsel(series, sc, vsel(vlt(q, vb(1.0)), _mm256_sqrt_pd(vb(1.0) / (vb(1.0) - q)), zero));
+      xi0 = vsel(proj, sc * (xi0 - xn * n0), xi0);
+      xi1 = vsel(proj, sc * (xi1 - xn * n1), xi1);
+    }
+    const V4 vdt = vb(dt);
+    {
+      const V4 du0 = R0 - rp0 - vdt * wxn0, du1 = R1 - rp1 - vdt * wxn1;
+      const V4 dun = du0 * n0 + du1 * n1;
+      xi0 = xi0 + (du0 - dun * n0);
+      xi1 = xi1 + (du1 - dun * n1);
+    }
+    {
+      const V4 dsum = vabs(D0) + vabs(D1) + vabs(D3xy);
+      const V4 Dn0 = D0 * n0 + D3xy * n1, Dn1 = D3xy * n0 + D1 * n1;
+      const V4 nDn = n0 * Dn0 + n1 * Dn1;
+      const V4 pl = vgt(dsum, zero);
+      const V4 vdbar = vb(dbar_u);
+      pn = vsel(pl, pn + nDn, pn);
+      xi0 = vsel(pl, xi0 - vdbar * (Dn0 - nDn * n0), xi0);
+      xi1 = vsel(pl, xi1 - vdbar * (Dn1 - nDn * n1), xi1);
+    }
+    th2 = th2 + vdt * dom2;
+    const V4 vG2 = vb(G2);
+    const V4 sf = vG2 * idbar;
+    const V4 sn = vG2 * (eraw - pn) + vb(alpha) * Xbar;
+    const V4 t0 = sf * xi0, t1 = sf * xi1;
+    const V4 vA = vb(A_u), vcd = vb(cd_u);
+    Fe0 = vA * (sn * n0 + t0);
+    Fe1 = vA * (sn * n1 + t1);
+    F0 = Fe0 + vcd * vr0;
+    F1 = Fe1 + vcd * vr1;
+    Ms2 = si * (vb(kr_u) * th2 + vb(cr_u) * dom2);
+    R2 = n2 = Fe2 = F2 = Ms0 = Ms1 = zero;    // (not read in 2D)
+    {
+      const V4 t2 = t0 * t0 + t1 * t1;
+      const V4 strength = vsel(veq(kind, vb(FS::LINK)), vb(s_link), vb(s_weld));
+      const V4 tp = vsel(vgt(sn, zero), sn, zero);
+      const V4 brk = _mm256_and_pd(vne(kind, vb(FS::ATTACH)),
+                                   vgt(tp * tp + vb(3.0) * t2, strength * strength));
+      if (const int bm = _mm256_movemask_pd(brk)) {
+        io.skip = 32 - __builtin_clz(bm);
+        return 0;
+      }
+    }
+    {
+      V4 c0 = kind, c1 = pn, c2 = xi0, c3 = xi1;
+      transpose4(c0, c1, c2, c3);
+      _mm256_storeu_pd(psc + le[0] * NP, c0);
+      _mm256_storeu_pd(psc + le[1] * NP, c1);
+      _mm256_storeu_pd(psc + le[2] * NP, c2);
+      _mm256_storeu_pd(psc + le[3] * NP, c3);
+    }
+    {
+      V4 c0 = th1, c1 = th2, c2 = R0, c3 = R1;
+      transpose4(c0, c1, c2, c3);
+      _mm256_storeu_pd(psc + le[0] * NP + 6, c0);
+      _mm256_storeu_pd(psc + le[1] * NP + 6, c1);
+      _mm256_storeu_pd(psc + le[2] * NP + 6, c2);
+      _mm256_storeu_pd(psc + le[3] * NP + 6, c3);
+    }
+    }
+    if (C.vglobal) {
+      // scatter's global virial, pair by pair in order
+      alignas(32) double f0[4], f1[4], f2[4], x0[4], x1[4], x2[4];
+      _mm256_store_pd(f0, F0);
+      _mm256_store_pd(f1, F1);
+      _mm256_store_pd(x0, R0);
+      _mm256_store_pd(x1, R1);
+      if (D3) {
+        _mm256_store_pd(f2, F2);
+        _mm256_store_pd(x2, R2);
+      }
+      for (int l = 0; l < 4; l++) {
+        const double w = (lef[l] & E_LOCAL) ? -1.0 : -0.5;
+        const double G0 = w * f0[l], G1 = w * f1[l];
+        io.vir[0] += x0[l] * G0;
+        io.vir[1] += x1[l] * G1;
+        io.vir[3] += x0[l] * G1;
+        if (D3) {
+          const double G2w = w * f2[l];
+          io.vir[2] += x2[l] * G2w;
+          io.vir[4] += x0[l] * G2w;
+          io.vir[5] += x1[l] * G2w;
+        }
+      }
     }
     // rows of sacc (C_*: F0 F1 T2 L0 | L1 L3 NL NC | F2 T0 T1 L2 | L4 L5 - -): one block of
     // four at a time, added to i's row and, when j is local, to j's (F_b = -F_a, M_b = -M_a:
@@ -1857,6 +2019,7 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
           if (!(lef[l] & E_SAME)) io.cross += 1.0;
         }
     }
+    if constexpr (D3) {
     {
       const V4 Fs2 = si * F2;
       const V4 T0 = vrq * (n1 * F2 - n2 * F1), T1 = vrq * (n2 * F0 - n0 * F2);
@@ -1866,6 +2029,7 @@ int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     {
       const V4 L4 = vrq * (half * (n0 * Fe2 + n2 * Fe0)), L5 = vrq * (half * (n1 * Fe2 + n2 * Fe1));
       add_rows(C_L4, L4, L5, zero, zero, true, zero, zero, zero, zero);
+    }
     }
     if (anylocal) io.local = true;
   io.e = e0 + 4;

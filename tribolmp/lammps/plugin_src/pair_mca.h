@@ -171,7 +171,7 @@ class PairMCA : public Pair {
   double mass_uni;      // the mass of every automaton (compute), or 0 if they differ
   int maxecount;        // the largest number of pairs of one automaton (rebuild_cache)
   int batch_on;         // 1: pass 2a computes the common case (pair_style keyword batch)
-  int fused_on;         // 1: pair_loop's fused kernel takes the 3D common case (keyword fused)
+  int fused_on;         // 1: pair_loop's fused kernel takes the common case (keyword fused)
   int prune_on;         // 1: the evaluation lists leave out pairs that cannot touch (prune)
   int ghost_rows_read;  // 1: some rank's evaluation lists read a ghost's row (rebuild_cache)
 
@@ -215,7 +215,7 @@ class PairMCA : public Pair {
     bool local;
     double links, cross, vir[6];
   };
-  __attribute__((noinline)) int fused4(const FusedCtx &C, FusedIO &io);
+  template <int DIM> __attribute__((noinline)) int fused4(const FusedCtx &C, FusedIO &io);
 };
 
 }    // namespace LAMMPS_NS
