@@ -78,7 +78,9 @@ def test_batched_common_case_matches_general_path(lammps_available, tmp_path, di
     [(2, 24, 10.0, 3), (3, 8, 20.0, 6)],
     ids=["2d", "3d"],
 )
-def test_fused_kernel_matches_batch(lammps_available, tmp_path, dim, n, vshear, links_per_automaton):
+def test_fused_kernel_matches_batch(
+    lammps_available, tmp_path, dim, n, vshear, links_per_automaton
+):
     """The fused kernel of the common case gives the batch's numbers, bit for bit.
 
     ``pair_style mca`` (one radius and one mass) hands the common case of four pairs at a
@@ -121,6 +123,7 @@ def test_pruned_lists_lose_no_contact(lammps_available, tmp_path, dim, n, spread
     that differ per automaton, must give the same trajectory with ``prune no``.  A limit
     without the skin fails this test.
     """
+
     def run(name, prune):
         v = block_setup("mca", dim, tmp_path / name, n=n)
         _perturb_diameters(tmp_path / name / "block.data", np.random.default_rng(7), spread)
