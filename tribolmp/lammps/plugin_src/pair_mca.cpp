@@ -1587,6 +1587,72 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     // what the sums below read: the pair's vector R (a to b), normal, elastic force Fe, force
     // F and signed moment Ms on i, kind (2D: the z components are not formed)
     V4 R0, R1, R2, n0, n1, n2, Fe0, Fe1, Fe2, F0, F1, F2, Ms0, Ms1, Ms2, kind;
+    // (what both dimensions do alike)
+    // a block: row(l) of lanes 0..3, transposed (a: the first value of the four lanes, ...)
+    auto rows4 = [&](auto row, V4 &a, V4 &b, V4 &c, V4 &d) __attribute__((always_inline)) {
+      a = row(0);
+      b = row(1);
+      c = row(2);
+      d = row(3);
+      transpose4(a, b, c, d);
+    };
+    // component c of R: (x_b - x_a) + shift where the pair is an image (pass 1a's order)
+    auto image_shift = [&](V4 &Rc, int c) __attribute__((always_inline)) {
+      Rc = vsel(vne(_mm256_load_pd(im), zero), Rc + _mm256_load_pd(sR[c]), Rc);
+    };
+    double *const sp[4] = {psc + le[0] * NP, psc + le[1] * NP, psc + le[2] * NP, psc + le[3] * NP};
+    // the rows' omega_z X dep_xx dep_yy (3D block 2): r omega_a + r omega_b (ws2), omega_b -
+    // omega_a (dom2), 0.5 (X_a + X_b), the plastic strain increments (a sum: the same numbers
+    // as pass 1a's)
+    V4 dom2, ws2, Xbar, D0, D1;
+    auto omega_z_block = [&]() __attribute__((always_inline)) {
+      auto row = [&](int l, V4 &g) __attribute__((always_inline)) {
+        const V4 av = _mm256_loadu_pd(pa[l] + R_OM + 2), bv = _mm256_loadu_pd(pb[l] + R_OM + 2);
+        g = bv - av;
+        return V4(_mm256_blend_pd(av + bv, vrq * av + vrq * bv, 0x1));
+      };
+      V4 g0, g1, g2, g3;
+      V4 c0 = row(0, g0), c1 = row(1, g1), c2 = row(2, g2), c3 = row(3, g3);
+      transpose4(c0, c1, c2, c3);
+      ws2 = c0;
+      Xbar = half * c1;
+      D0 = half * c2;
+      D1 = half * c3;
+      dom2 = _mm256_permute2f128_pd(_mm256_unpacklo_pd(g0, g1), _mm256_unpacklo_pd(g2, g3), 0x20);
+    };
+    // the factor that keeps xi's magnitude when it is turned into the tangent plane
+    // (batch_geometry), and whether it applies
+    auto tangent_scale = [&](V4 xn, V4 m0, V4 &proj) __attribute__((always_inline)) {
+      proj = _mm256_and_pd(vne(xn, zero), vgt(m0, zero));
+      const V4 q = xn * xn / m0;
+      V4 sc = vb(1.0) + q * (vb(0.5) + vb(0.375) * q);
+      const V4 series = vlt(q, vb(1e-4));
+      // (the square root only where a lane needs it: one division and one square root less
+      // per four pairs in the common case, whose normals turn by ~1e-6 rad per step)
+      if (_mm256_movemask_pd(_mm256_andnot_pd(series, proj)))
+        sc = vsel(series, sc, vsel(vlt(q, vb(1.0)), _mm256_sqrt_pd(vb(1.0) / (vb(1.0) - q)), zero));
+      return sc;
+    };
+    // the lanes whose link breaks on this step (t2: |t|^2)
+    auto breaking = [&](V4 sn, V4 t2) __attribute__((always_inline)) {
+      const V4 strength = vsel(veq(kind, vb(FS::LINK)), vb(s_link), vb(s_weld));
+      const V4 tp = vsel(vgt(sn, zero), sn, zero);
+      const V4 brk = _mm256_and_pd(vne(kind, vb(FS::ATTACH)),
+                                   vgt(tp * tp + vb(3.0) * t2, strength * strength));
+      return _mm256_movemask_pd(brk);
+    };
+    // four values of each lane's pair state entry, from offset off on, and back (c_v: value v
+    // of the four lanes)
+    auto get_state = [&](int off, V4 &c0, V4 &c1, V4 &c2, V4 &c3) __attribute__((always_inline)) {
+      rows4([&](int l) { return V4(_mm256_loadu_pd(sp[l] + off)); }, c0, c1, c2, c3);
+    };
+    auto put_state = [&](int off, V4 c0, V4 c1, V4 c2, V4 c3) __attribute__((always_inline)) {
+      transpose4(c0, c1, c2, c3);
+      _mm256_storeu_pd(sp[0] + off, c0);
+      _mm256_storeu_pd(sp[1] + off, c1);
+      _mm256_storeu_pd(sp[2] + off, c2);
+      _mm256_storeu_pd(sp[3] + off, c3);
+    };
     if constexpr (D3) {
     // the rows of xo of a and b (i is a where E_IA: pass 1a's canonical orientation): x v omega
     // X dep (pair_mca.h, R_*), four blocks of four.  Per lane, b's row minus a's gives R, dV and
@@ -1605,17 +1671,11 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
           bv = _mm256_blend_pd(bv, bv + _mm256_setr_pd(0.0, 0.0, 0.0, sV[0][l]), 0x8);
         return bv - _mm256_loadu_pd(pa[l]);
       };
-      R0 = row(0);
-      R1 = row(1);
-      R2 = row(2);
-      dV0 = row(3);
-      transpose4(R0, R1, R2, dV0);
+      rows4(row, R0, R1, R2, dV0);
       if (anyimg) {
-        // ((x_b - x_a) + shift)
-        const V4 mIM = vne(_mm256_load_pd(im), zero);
-        R0 = vsel(mIM, R0 + _mm256_load_pd(sR[0]), R0);
-        R1 = vsel(mIM, R1 + _mm256_load_pd(sR[1]), R1);
-        R2 = vsel(mIM, R2 + _mm256_load_pd(sR[2]), R2);
+        image_shift(R0, 0);
+        image_shift(R1, 1);
+        image_shift(R2, 2);
       }
     }
     // pass 1b (batch_geometry)
@@ -1649,22 +1709,7 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
       ws1 = w3;
     }
     // block 2 (omega2, X, dep xx yy): ws2 dom2, Xbar, D0 D1
-    V4 dom2, ws2, Xbar, D0, D1;
-    {
-      auto row = [&](int l, V4 &g) __attribute__((always_inline)) {
-        const V4 av = _mm256_loadu_pd(pa[l] + 8), bv = _mm256_loadu_pd(pb[l] + 8);
-        g = bv - av;
-        return V4(_mm256_blend_pd(av + bv, vrq * av + vrq * bv, 0x1));
-      };
-      V4 g0, g1, g2, g3;
-      V4 c0 = row(0, g0), c1 = row(1, g1), c2 = row(2, g2), c3 = row(3, g3);
-      transpose4(c0, c1, c2, c3);
-      ws2 = c0;
-      Xbar = half * c1;
-      D0 = half * c2;
-      D1 = half * c3;
-      dom2 = _mm256_permute2f128_pd(_mm256_unpacklo_pd(g0, g1), _mm256_unpacklo_pd(g2, g3), 0x20);
-    }
+    omega_z_block();
     // the contact point's rotation term and the relative velocity (batch_common)
     const V4 wxn0 = ws1 * n2 - ws2 * n1, wxn1 = ws2 * n0 - ws0 * n2, wxn2 = ws0 * n1 - ws1 * n0;
     const V4 vr0 = dV0 - wxn0, vr1 = dV1 - wxn1, vr2 = dV2 - wxn2;
@@ -1675,8 +1720,8 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
       auto row = [&](int l) __attribute__((always_inline)) {
         return V4(_mm256_loadu_pd(pa[l] + 12) + _mm256_loadu_pd(pb[l] + 12));
       };
-      V4 c0 = row(0), c1 = row(1), c2 = row(2), c3 = row(3);
-      transpose4(c0, c1, c2, c3);
+      V4 c0, c1, c2, c3;
+      rows4(row, c0, c1, c2, c3);
       const V4 D2 = half * c0, D3xy = half * c1, D4 = half * c2, D5 = half * c3;
       const V4 dsum = vabs(D0) + vabs(D1) + vabs(D2) + vabs(D3xy) + vabs(D4) + vabs(D5);
       const V4 Dn0 = D0 * n0 + D3xy * n1 + D4 * n2, Dn1 = D3xy * n0 + D1 * n1 + D5 * n2,
@@ -1689,24 +1734,13 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
       cor2 = vdbar * (Dn2 - nDn * n2);
     }
     // the pair states: kind pn xi th rp (psc entries, pair_mca.h)
-    const double *sp[4] = {psc + le[0] * NP, psc + le[1] * NP, psc + le[2] * NP, psc + le[3] * NP};
-    V4 pn = _mm256_loadu_pd(sp[1]), xi0 = _mm256_loadu_pd(sp[2]), xi1 = _mm256_loadu_pd(sp[3]);
-    kind = _mm256_loadu_pd(sp[0]);
-    transpose4(kind, pn, xi0, xi1);
-    V4 xi2 = _mm256_loadu_pd(sp[0] + 4), th0 = _mm256_loadu_pd(sp[1] + 4),
-       th1 = _mm256_loadu_pd(sp[2] + 4), th2 = _mm256_loadu_pd(sp[3] + 4);
-    transpose4(xi2, th0, th1, th2);
+    V4 pn, xi0, xi1, xi2, th0, th1, th2;
+    get_state(0, kind, pn, xi0, xi1);
+    get_state(4, xi2, th0, th1, th2);
     {
       const V4 xn = xi0 * n0 + xi1 * n1 + xi2 * n2;
-      const V4 m0 = xi0 * xi0 + xi1 * xi1 + xi2 * xi2;
-      const V4 proj = _mm256_and_pd(vne(xn, zero), vgt(m0, zero));
-      const V4 q = xn * xn / m0;
-      V4 sc = vb(1.0) + q * (vb(0.5) + vb(0.375) * q);
-      const V4 series = vlt(q, vb(1e-4));
-      // (the square root only where a lane needs it: one division and one square root less
-      // per four pairs in the common case, whose normals turn by ~1e-6 rad per step)
-      if (_mm256_movemask_pd(_mm256_andnot_pd(series, proj)))
-        sc = vsel(series, sc, vsel(vlt(q, vb(1.0)), _mm256_sqrt_pd(vb(1.0) / (vb(1.0) - q)), zero));
+      V4 proj;
+      const V4 sc = tangent_scale(xn, xi0 * xi0 + xi1 * xi1 + xi2 * xi2, proj);
       // pass 2a (batch_common): the projection
       xi0 = vsel(proj, sc * (xi0 - xn * n0), xi0);
       xi1 = vsel(proj, sc * (xi1 - xn * n1), xi1);
@@ -1746,45 +1780,24 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     Ms0 = si * (vkr * th0 + vcr * dom0);
     Ms1 = si * (vkr * th1 + vcr * dom1);
     Ms2 = si * (vkr * th2 + vcr * dom2);
-    {
-      const V4 t2 = t0 * t0 + t1 * t1 + t2v * t2v;
-      const V4 strength = vsel(veq(kind, vb(FS::LINK)), vb(s_link), vb(s_weld));
-      const V4 tp = vsel(vgt(sn, zero), sn, zero);
-      const V4 brk = _mm256_and_pd(vne(kind, vb(FS::ATTACH)),
-                                   vgt(tp * tp + vb(3.0) * t2, strength * strength));
-      // a link breaks: the batch's general path, from the pair before it on
-      if (const int bm = _mm256_movemask_pd(brk)) {
-        io.skip = 32 - __builtin_clz(bm);
-        return 0;
-      }
+    // a link breaks: the batch's general path, from the pair before it on
+    if (const int bm = breaking(sn, t0 * t0 + t1 * t1 + t2v * t2v)) {
+      io.skip = 32 - __builtin_clz(bm);
+      return 0;
     }
     static_assert(FS::S_PN == FS::S_KIND + 1 && FS::S_XI == FS::S_KIND + 2 &&
                       FS::S_TH == FS::S_KIND + 5 && FS::S_RP == FS::S_KIND + 8 && NP == 11,
                   "the fused kernel moves pair states in blocks of four");
     // the advanced state, back into the entries (kind unchanged), four values at a time
-    {
-      V4 c0 = kind, c1 = pn, c2 = xi0, c3 = xi1;
-      transpose4(c0, c1, c2, c3);
-      _mm256_storeu_pd(psc + le[0] * NP, c0);
-      _mm256_storeu_pd(psc + le[1] * NP, c1);
-      _mm256_storeu_pd(psc + le[2] * NP, c2);
-      _mm256_storeu_pd(psc + le[3] * NP, c3);
-    }
-    {
-      V4 c0 = xi2, c1 = th0, c2 = th1, c3 = th2;
-      transpose4(c0, c1, c2, c3);
-      _mm256_storeu_pd(psc + le[0] * NP + 4, c0);
-      _mm256_storeu_pd(psc + le[1] * NP + 4, c1);
-      _mm256_storeu_pd(psc + le[2] * NP + 4, c2);
-      _mm256_storeu_pd(psc + le[3] * NP + 4, c3);
-    }
+    put_state(0, kind, pn, xi0, xi1);
+    put_state(4, xi2, th0, th1, th2);
     {
       V4 c0 = R0, c1 = R1, c2 = R2, c3 = R2;
       transpose4(c0, c1, c2, c3);
-      store3(psc + le[0] * NP + 8, c0);
-      store3(psc + le[1] * NP + 8, c1);
-      store3(psc + le[2] * NP + 8, c2);
-      store3(psc + le[3] * NP + 8, c3);
+      store3(sp[0] + 8, c0);
+      store3(sp[1] + 8, c1);
+      store3(sp[2] + 8, c2);
+      store3(sp[3] + 8, c3);
     }
     } else {
     // 2D: of the rows of xo, x0 x1 and v0 v1 (two halves of one vector), omega_z X dep_xx
@@ -1805,16 +1818,10 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
           bv = _mm256_blend_pd(bv, bv + _mm256_setr_pd(0.0, 0.0, sV[0][l], sV[1][l]), 0xC);
         return bv - av;
       };
-      R0 = row(0);
-      R1 = row(1);
-      dV0 = row(2);
-      dV1 = row(3);
-      transpose4(R0, R1, dV0, dV1);
+      rows4(row, R0, R1, dV0, dV1);
       if (anyimg) {
-        // ((x_b - x_a) + shift)
-        const V4 mIM = vne(_mm256_load_pd(im), zero);
-        R0 = vsel(mIM, R0 + _mm256_load_pd(sR[0]), R0);
-        R1 = vsel(mIM, R1 + _mm256_load_pd(sR[1]), R1);
+        image_shift(R0, 0);
+        image_shift(R1, 1);
       }
     }
     // pass 1b (batch_geometry)
@@ -1825,23 +1832,8 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     n1 = R1 * ir;
     const V4 idbar = vb(idbar_u);
     const V4 eraw = r * idbar - vb(1.0);
-    // (omega2, X, dep xx yy): ws2 dom2, Xbar, D0 D1, as the 3D block 2
-    V4 dom2, ws2, Xbar, D0, D1;
-    {
-      auto row = [&](int l, V4 &g) __attribute__((always_inline)) {
-        const V4 av = _mm256_loadu_pd(pa[l] + R_OM + 2), bv = _mm256_loadu_pd(pb[l] + R_OM + 2);
-        g = bv - av;
-        return V4(_mm256_blend_pd(av + bv, vrq * av + vrq * bv, 0x1));
-      };
-      V4 g0, g1, g2, g3;
-      V4 c0 = row(0, g0), c1 = row(1, g1), c2 = row(2, g2), c3 = row(3, g3);
-      transpose4(c0, c1, c2, c3);
-      ws2 = c0;
-      Xbar = half * c1;
-      D0 = half * c2;
-      D1 = half * c3;
-      dom2 = _mm256_permute2f128_pd(_mm256_unpacklo_pd(g0, g1), _mm256_unpacklo_pd(g2, g3), 0x20);
-    }
+    // (omega2, X, dep xx yy): ws2 dom2, Xbar, D0 D1
+    omega_z_block();
     // dep_xy
     const int XY = R_DEP + 3;
     const V4 D3xy = half * (_mm256_setr_pd(pa[0][XY], pa[1][XY], pa[2][XY], pa[3][XY]) +
@@ -1850,22 +1842,13 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     const V4 wxn0 = -(ws2 * n1), wxn1 = ws2 * n0;
     const V4 vr0 = dV0 - wxn0, vr1 = dV1 - wxn1;
     // the pair states
-    const double *sp[4] = {psc + le[0] * NP, psc + le[1] * NP, psc + le[2] * NP, psc + le[3] * NP};
-    V4 pn = _mm256_loadu_pd(sp[1]), xi0 = _mm256_loadu_pd(sp[2]), xi1 = _mm256_loadu_pd(sp[3]);
-    kind = _mm256_loadu_pd(sp[0]);
-    transpose4(kind, pn, xi0, xi1);
-    V4 th1 = _mm256_loadu_pd(sp[0] + 6), th2 = _mm256_loadu_pd(sp[1] + 6),
-       rp0 = _mm256_loadu_pd(sp[2] + 6), rp1 = _mm256_loadu_pd(sp[3] + 6);
-    transpose4(th1, th2, rp0, rp1);
+    V4 pn, xi0, xi1, th1, th2, rp0, rp1;
+    get_state(0, kind, pn, xi0, xi1);
+    get_state(6, th1, th2, rp0, rp1);
     {
       const V4 xn = xi0 * n0 + xi1 * n1;
-      const V4 m0 = xi0 * xi0 + xi1 * xi1;
-      const V4 proj = _mm256_and_pd(vne(xn, zero), vgt(m0, zero));
-      const V4 q = xn * xn / m0;
-      V4 sc = vb(1.0) + q * (vb(0.5) + vb(0.375) * q);
-      const V4 series = vlt(q, vb(1e-4));
-      if (_mm256_movemask_pd(_mm256_andnot_pd(series, proj)))
-        sc = vsel(series, sc, vsel(vlt(q, vb(1.0)), _mm256_sqrt_pd(vb(1.0) / (vb(1.0) - q)), zero));
+      V4 proj;
+      const V4 sc = tangent_scale(xn, xi0 * xi0 + xi1 * xi1, proj);
       xi0 = vsel(proj, sc * (xi0 - xn * n0), xi0);
       xi1 = vsel(proj, sc * (xi1 - xn * n1), xi1);
     }
@@ -1898,33 +1881,12 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     F1 = Fe1 + vcd * vr1;
     Ms2 = si * (vb(kr_u) * th2 + vb(cr_u) * dom2);
     R2 = n2 = Fe2 = F2 = Ms0 = Ms1 = zero;    // (not read in 2D)
-    {
-      const V4 t2 = t0 * t0 + t1 * t1;
-      const V4 strength = vsel(veq(kind, vb(FS::LINK)), vb(s_link), vb(s_weld));
-      const V4 tp = vsel(vgt(sn, zero), sn, zero);
-      const V4 brk = _mm256_and_pd(vne(kind, vb(FS::ATTACH)),
-                                   vgt(tp * tp + vb(3.0) * t2, strength * strength));
-      if (const int bm = _mm256_movemask_pd(brk)) {
-        io.skip = 32 - __builtin_clz(bm);
-        return 0;
-      }
+    if (const int bm = breaking(sn, t0 * t0 + t1 * t1)) {
+      io.skip = 32 - __builtin_clz(bm);
+      return 0;
     }
-    {
-      V4 c0 = kind, c1 = pn, c2 = xi0, c3 = xi1;
-      transpose4(c0, c1, c2, c3);
-      _mm256_storeu_pd(psc + le[0] * NP, c0);
-      _mm256_storeu_pd(psc + le[1] * NP, c1);
-      _mm256_storeu_pd(psc + le[2] * NP, c2);
-      _mm256_storeu_pd(psc + le[3] * NP, c3);
-    }
-    {
-      V4 c0 = th1, c1 = th2, c2 = R0, c3 = R1;
-      transpose4(c0, c1, c2, c3);
-      _mm256_storeu_pd(psc + le[0] * NP + 6, c0);
-      _mm256_storeu_pd(psc + le[1] * NP + 6, c1);
-      _mm256_storeu_pd(psc + le[2] * NP + 6, c2);
-      _mm256_storeu_pd(psc + le[3] * NP + 6, c3);
-    }
+    put_state(0, kind, pn, xi0, xi1);
+    put_state(6, th1, th2, R0, R1);
     }
     if (C.vglobal) {
       // scatter's global virial, pair by pair in order
