@@ -1565,7 +1565,7 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
         unpack_image(eimg[le[l]], jimg);
         const bool i_is_a = lef[l] & E_IA;
         const double n0 = i_is_a ? jimg[0] : -jimg[0], n1 = i_is_a ? jimg[1] : -jimg[1];
-        if (D3) {
+        if constexpr (D3) {
           const double n2 = i_is_a ? jimg[2] : -jimg[2];
           sR[0][l] = (n0 * h[0] + n1 * h[5] + n2 * h[4]);
           sR[1][l] = (n1 * h[1] + n2 * h[3]);
@@ -1585,7 +1585,7 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     const V4 vrq = vb(runi);
     const V4 si = vsel(mIA, vb(1.0), vb(-1.0));
     // what the sums below read: the pair's vector R (a to b), normal, elastic force Fe, force
-    // F and signed moment Ms on i, kind (2D: the z components are not formed)
+    // F and signed moment Ms on i, kind (2D: the z components are neither formed nor read)
     V4 R0, R1, R2, n0, n1, n2, Fe0, Fe1, Fe2, F0, F1, F2, Ms0, Ms1, Ms2, kind;
     // (what both dimensions do alike)
     // a block: row(l) of lanes 0..3, transposed (a: the first value of the four lanes, ...)
@@ -1880,7 +1880,6 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
     F0 = Fe0 + vcd * vr0;
     F1 = Fe1 + vcd * vr1;
     Ms2 = si * (vb(kr_u) * th2 + vb(cr_u) * dom2);
-    R2 = n2 = Fe2 = F2 = Ms0 = Ms1 = zero;    // (not read in 2D)
     if (const int bm = breaking(sn, t0 * t0 + t1 * t1)) {
       io.skip = 32 - __builtin_clz(bm);
       return 0;
@@ -1895,7 +1894,7 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
       _mm256_store_pd(f1, F1);
       _mm256_store_pd(x0, R0);
       _mm256_store_pd(x1, R1);
-      if (D3) {
+      if constexpr (D3) {
         _mm256_store_pd(f2, F2);
         _mm256_store_pd(x2, R2);
       }
@@ -1905,7 +1904,7 @@ template <int DIM> int PairMCA::fused4(const FusedCtx &C, FusedIO &io)
         io.vir[0] += x0[l] * G0;
         io.vir[1] += x1[l] * G1;
         io.vir[3] += x0[l] * G1;
-        if (D3) {
+        if constexpr (D3) {
           const double G2w = w * f2[l];
           io.vir[2] += x2[l] * G2w;
           io.vir[4] += x0[l] * G2w;
